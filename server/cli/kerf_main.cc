@@ -1,0 +1,45 @@
+// kerf: one binary, subcommands. Exit status 0 on success, 1 when the command failed (bad
+// input file, ...), 2 for a usage error.
+#include <iostream>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "cli/mesh_commands.h"
+
+namespace {
+
+constexpr absl::string_view kUsage =
+    "usage: kerf demo [--json]\n"
+    "       kerf mesh info FILE [--json]\n"
+    "       kerf mesh lattice NX NY NZ [--size X Y Z] --out FILE\n"
+    "       kerf mesh convert IN OUT\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<absl::string_view> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "help") {
+    std::cout << kUsage;
+    return args.empty() ? 2 : 0;
+  }
+  const std::vector<absl::string_view> rest(args.begin() + 1, args.end());
+  absl::StatusOr<std::string> result;
+  if (args[0] == "mesh") {
+    result = kerf::cli::RunMeshCommand(rest);
+  } else if (args[0] == "demo") {
+    result = kerf::cli::RunDemoCommand(rest);
+  } else {
+    std::cerr << "kerf: unknown command '" << args[0] << "'\n" << kUsage;
+    return 2;
+  }
+  if (!result.ok()) {
+    std::cerr << "kerf: " << result.status().message() << "\n";
+    return result.status().code() == absl::StatusCode::kInvalidArgument &&
+                   result.status().message().find("usage:") != absl::string_view::npos
+               ? 2
+               : 1;
+  }
+  std::cout << *result;
+  return 0;
+}

@@ -1,0 +1,85 @@
+#include "mesh/box_lattice.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "geometry/tet_measures.h"
+
+namespace kerf::mesh {
+namespace {
+
+constexpr int kMaxCellsPerAxis = 1024;
+
+absl::Status CheckCount(const char* name, int count) {
+  if (count < 1 || count > kMaxCellsPerAxis) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(name, " must be in [1, ", kMaxCellsPerAxis, "], got ", count));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<TetMesh> MakeBoxLattice(const BoxLatticeSpec& spec) {
+  if (auto s = CheckCount("cells_x", spec.cells_x); !s.ok()) return s;
+  if (auto s = CheckCount("cells_y", spec.cells_y); !s.ok()) return s;
+  if (auto s = CheckCount("cells_z", spec.cells_z); !s.ok()) return s;
+  const std::array<int, 3> cells = {spec.cells_x, spec.cells_y, spec.cells_z};
+  Eigen::Vector3d size = spec.size;
+  if (size.isZero()) size = Eigen::Vector3d(cells[0], cells[1], cells[2]);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!std::isfinite(size[axis]) || size[axis] <= 0) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("size ", absl::string_view("xyz").substr(axis, 1),
+                       " must be positive and finite, got ", size[axis]));
+    }
+  }
+  const Eigen::Vector3d step(size[0] / cells[0], size[1] / cells[1], size[2] / cells[2]);
+  const int nx = cells[0] + 1, ny = cells[1] + 1, nz = cells[2] + 1;
+
+  TetMesh mesh;
+  for (int k = 0; k < nz; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        // The last layer sits exactly on the box's far face.
+        mesh.AddVertex(Eigen::Vector3d(i == cells[0] ? size[0] : i * step[0],
+                                       j == cells[1] ? size[1] : j * step[1],
+                                       k == cells[2] ? size[2] : k * step[2]));
+      }
+    }
+  }
+  auto vertex_at = [&](int i, int j, int k) {
+    return static_cast<VertexId>(i + nx * (j + ny * k));
+  };
+
+  // The six paths from corner (0,0,0) to (1,1,1) along cube edges, one per axis order; each
+  // path's four corners form a tet. Odd permutations give negative orientation.
+  constexpr std::array<std::array<int, 3>, 6> kAxisOrders = {
+      {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}}};
+  for (int k = 0; k < cells[2]; ++k) {
+    for (int j = 0; j < cells[1]; ++j) {
+      for (int i = 0; i < cells[0]; ++i) {
+        for (std::size_t p = 0; p < kAxisOrders.size(); ++p) {
+          std::array<int, 3> corner = {i, j, k};
+          TetVertices tet;
+          tet[0] = vertex_at(corner[0], corner[1], corner[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++corner[kAxisOrders[p][s]];
+            tet[s + 1] = vertex_at(corner[0], corner[1], corner[2]);
+          }
+          if (p >= 3) std::swap(tet[2], tet[3]);
+          absl::StatusOr<TetId> added = mesh.AddTet(tet);
+          assert(added.ok());
+          (void)added;
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+}  // namespace kerf::mesh

@@ -1,0 +1,71 @@
+// The record of topology changes to a mesh, from which a later layer streams deltas.
+//
+// Every addition and removal of a vertex or tet is appended as an event with a sequence
+// number. A consumer takes a Mark, and later asks for the net changes since it: an element
+// added and removed again within the interval appears in neither list. Events older than a
+// mark can be discarded to bound memory; asking for changes since a discarded point is an
+// error, on which a consumer falls back to a full snapshot.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "mesh/mesh_ids.h"
+
+namespace kerf::mesh {
+
+// A position in the change log: the number of events recorded before it.
+struct ChangeMark {
+  std::uint64_t sequence = 0;
+  friend bool operator==(ChangeMark, ChangeMark) = default;
+};
+
+// Net topology changes over an interval, each list in increasing id order.
+struct MeshChanges {
+  std::vector<VertexId> added_vertices;
+  std::vector<VertexId> removed_vertices;
+  std::vector<TetId> added_tets;
+  std::vector<TetId> removed_tets;
+
+  bool empty() const {
+    return added_vertices.empty() && removed_vertices.empty() && added_tets.empty() &&
+           removed_tets.empty();
+  }
+};
+
+class MeshChangeLog {
+ public:
+  // O(1) amortised.
+  void RecordAddedVertex(VertexId v) { Append(Kind::kAddVertex, Index(v)); }
+  void RecordRemovedVertex(VertexId v) { Append(Kind::kRemoveVertex, Index(v)); }
+  void RecordAddedTet(TetId t) { Append(Kind::kAddTet, Index(t)); }
+  void RecordRemovedTet(TetId t) { Append(Kind::kRemoveTet, Index(t)); }
+
+  // The current end of the log.
+  ChangeMark Mark() const { return {first_kept_ + events_.size()}; }
+
+  // Net changes from `since` to now. O(k log k) in the k events since the mark.
+  // OUT_OF_RANGE if events from `since` on were discarded or `since` is in the future.
+  absl::StatusOr<MeshChanges> ChangesSince(ChangeMark since) const;
+
+  // Forgets the events before `mark` (no effect if already forgotten). O(events kept).
+  void DiscardBefore(ChangeMark mark);
+
+  // Events held in memory.
+  std::size_t retained_events() const { return events_.size(); }
+
+ private:
+  enum class Kind : std::uint8_t { kAddVertex, kRemoveVertex, kAddTet, kRemoveTet };
+  struct Event {
+    Kind kind;
+    std::uint32_t id;
+  };
+
+  void Append(Kind kind, std::uint32_t id) { events_.push_back({kind, id}); }
+
+  std::uint64_t first_kept_ = 0;  // sequence number of events_[0]
+  std::vector<Event> events_;
+};
+
+}  // namespace kerf::mesh

@@ -1,0 +1,37 @@
+// Quality measures of a whole mesh, on its rest shape.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "mesh/tet_mesh.h"
+
+namespace kerf::mesh {
+
+// A tet whose smallest dihedral angle is under this is a sliver: it makes explicit time
+// steps tiny and stiffness ill-conditioned.
+inline constexpr double kDefaultSliverAngleDeg = 5.0;
+
+struct MeshQuality {
+  std::size_t tets = 0;
+  double total_volume = 0;  // sum of signed rest volumes
+  double min_volume = 0;
+  double max_volume = 0;
+  double min_edge_length = 0;
+  double max_edge_length = 0;
+  double min_dihedral_deg = 0;
+  double max_dihedral_deg = 0;
+  double min_radius_ratio = 0;
+  double mean_radius_ratio = 0;
+  std::size_t slivers = 0;  // tets with min dihedral under the sliver angle
+  // Tets by their smallest dihedral angle, in 10-degree bins: [0,10), [10,20), ... [70,80].
+  // (The largest possible smallest angle, of the regular tet, is 70.53 degrees.)
+  std::array<std::size_t, 8> min_dihedral_histogram{};
+};
+
+// Measures every live tet on rest positions. All fields are zero for a mesh with no tets.
+// O(tets).
+MeshQuality MeasureMeshQuality(const TetMesh& mesh,
+                               double sliver_angle_deg = kDefaultSliverAngleDeg);
+
+}  // namespace kerf::mesh

@@ -1,0 +1,146 @@
+#include "mesh/tet_mesh.h"
+
+#include <algorithm>
+#include <cassert>
+
+#include "absl/strings/str_cat.h"
+#include "geometry/tet_measures.h"
+
+namespace kerf::mesh {
+namespace {
+
+// Each distinct corner once: a tet with a repeated vertex is in that vertex's star once.
+bool IsFirstOccurrence(const TetVertices& tet, int corner) {
+  for (int i = 0; i < corner; ++i) {
+    if (tet[i] == tet[corner]) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool TetHasVertex(const TetVertices& tet, VertexId v) {
+  return tet[0] == v || tet[1] == v || tet[2] == v || tet[3] == v;
+}
+
+VertexId TetMesh::AddVertex(const Eigen::Vector3d& rest_position) {
+  return AddVertex(rest_position, rest_position);
+}
+
+VertexId TetMesh::AddVertex(const Eigen::Vector3d& rest_position,
+                            const Eigen::Vector3d& current_position) {
+  const auto v = static_cast<VertexId>(rest_.size());
+  rest_.push_back(rest_position);
+  current_.push_back(current_position);
+  stars_.emplace_back();
+  vertex_alive_.push_back(true);
+  ++vertex_count_;
+  change_log_.RecordAddedVertex(v);
+  return v;
+}
+
+absl::Status TetMesh::RemoveVertex(VertexId v) {
+  if (!IsAlive(v)) return absl::NotFoundError(absl::StrCat("vertex ", Index(v), " is not alive"));
+  if (!stars_[Index(v)].empty()) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("vertex ", Index(v), " is used by ", stars_[Index(v)].size(), " tets"));
+  }
+  vertex_alive_[Index(v)] = false;
+  stars_[Index(v)].clear();
+  stars_[Index(v)].shrink_to_fit();  // release any heap storage
+  --vertex_count_;
+  change_log_.RecordRemovedVertex(v);
+  return absl::OkStatus();
+}
+
+const Eigen::Vector3d& TetMesh::rest_position(VertexId v) const {
+  assert(IsAlive(v));
+  return rest_[Index(v)];
+}
+
+const Eigen::Vector3d& TetMesh::current_position(VertexId v) const {
+  assert(IsAlive(v));
+  return current_[Index(v)];
+}
+
+void TetMesh::set_current_position(VertexId v, const Eigen::Vector3d& position) {
+  assert(IsAlive(v));
+  current_[Index(v)] = position;
+}
+
+absl::StatusOr<TetId> TetMesh::AddTet(const TetVertices& vertices) {
+  for (const VertexId v : vertices) {
+    if (!IsAlive(v)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("cannot add a tet on vertex ", Index(v), ": it is not alive"));
+    }
+  }
+  const auto t = static_cast<TetId>(tets_.size());
+  tets_.push_back(vertices);
+  tet_alive_.push_back(true);
+  ++tet_count_;
+  for (int i = 0; i < 4; ++i) {
+    if (IsFirstOccurrence(vertices, i)) stars_[Index(vertices[i])].push_back(t);
+  }
+  change_log_.RecordAddedTet(t);
+  return t;
+}
+
+absl::Status TetMesh::RemoveTet(TetId t) {
+  if (!IsAlive(t)) return absl::NotFoundError(absl::StrCat("tet ", Index(t), " is not alive"));
+  const TetVertices& vertices = tets_[Index(t)];
+  for (int i = 0; i < 4; ++i) {
+    if (!IsFirstOccurrence(vertices, i)) continue;
+    Star& star = stars_[Index(vertices[i])];
+    const auto it = std::find(star.begin(), star.end(), t);
+    assert(it != star.end());
+    *it = star.back();  // order in a star carries no meaning
+    star.pop_back();
+  }
+  tet_alive_[Index(t)] = false;
+  --tet_count_;
+  change_log_.RecordRemovedTet(t);
+  return absl::OkStatus();
+}
+
+const TetVertices& TetMesh::tet(TetId t) const {
+  assert(IsAlive(t));
+  return tets_[Index(t)];
+}
+
+std::span<const TetId> TetMesh::TetsAround(VertexId v) const {
+  assert(IsAlive(v));
+  const Star& star = stars_[Index(v)];
+  return {star.data(), star.size()};
+}
+
+TetMesh::TetList TetMesh::TetsAroundEdge(VertexId a, VertexId b) const {
+  TetList result;
+  for (const TetId t : TetsAround(a)) {
+    if (TetHasVertex(tets_[Index(t)], b)) result.push_back(t);
+  }
+  return result;
+}
+
+TetMesh::TetList TetMesh::TetsAroundFace(VertexId a, VertexId b, VertexId c) const {
+  TetList result;
+  for (const TetId t : TetsAround(a)) {
+    const TetVertices& tet = tets_[Index(t)];
+    if (TetHasVertex(tet, b) && TetHasVertex(tet, c)) result.push_back(t);
+  }
+  return result;
+}
+
+double RestVolume(const TetMesh& mesh, TetId t) {
+  const TetVertices& v = mesh.tet(t);
+  return geometry::SignedVolume(mesh.rest_position(v[0]), mesh.rest_position(v[1]),
+                                mesh.rest_position(v[2]), mesh.rest_position(v[3]));
+}
+
+double CurrentVolume(const TetMesh& mesh, TetId t) {
+  const TetVertices& v = mesh.tet(t);
+  return geometry::SignedVolume(mesh.current_position(v[0]), mesh.current_position(v[1]),
+                                mesh.current_position(v[2]), mesh.current_position(v[3]));
+}
+
+}  // namespace kerf::mesh
