@@ -1,5 +1,5 @@
 // kerf: one binary, subcommands. Exit status 0 on success, 1 when the command failed (bad
-// input file, ...), 2 for a usage error.
+// arguments, a bad input file, ...), 2 when no known command was given.
 #include <iostream>
 #include <vector>
 
@@ -35,10 +35,7 @@ int main(int argc, char** argv) {
   }
   if (!result.ok()) {
     std::cerr << "kerf: " << result.status().message() << "\n";
-    return result.status().code() == absl::StatusCode::kInvalidArgument &&
-                   result.status().message().find("usage:") != absl::string_view::npos
-               ? 2
-               : 1;
+    return 1;
   }
   std::cout << *result;
   return 0;

@@ -38,7 +38,10 @@ absl::Status ReadNodes(TextScanner& s, internal::TetMeshDataBuilder& builder) {
     }
     if (auto st = builder.AddPoint(*id, p, s, s.token_offset()); !st.ok()) return st;
   }
-  if (!s.AtEnd()) return s.ErrorExpected(absl::StrCat("end of file after ", *count, " points"));
+  if (!s.AtEnd()) {
+    s.NextToken();
+    return s.ErrorExpected(absl::StrCat("end of file after ", *count, " points"));
+  }
   return absl::OkStatus();
 }
 
@@ -71,7 +74,10 @@ absl::Status ReadTets(TextScanner& s, internal::TetMeshDataBuilder& builder) {
     }
     builder.AddTet(ids, offset);
   }
-  if (!s.AtEnd()) return s.ErrorExpected(absl::StrCat("end of file after ", *count, " tetrahedra"));
+  if (!s.AtEnd()) {
+    s.NextToken();
+    return s.ErrorExpected(absl::StrCat("end of file after ", *count, " tetrahedra"));
+  }
   return absl::OkStatus();
 }
 

@@ -142,7 +142,7 @@ absl::StatusOr<TetMeshData> ParseVtkLegacy(absl::string_view text, absl::string_
     } else if (keyword == "METADATA") {
       // Blocks of information keys, ended by an empty line.
       s.NextLine();
-      while (!s.AtEnd() && !absl::StripAsciiWhitespace(s.NextLine()).empty()) {
+      while (s.offset() < text.size() && !absl::StripAsciiWhitespace(s.NextLine()).empty()) {
       }
     } else {
       return s.ErrorExpected("'POINTS', 'CELLS' or 'CELL_TYPES'");

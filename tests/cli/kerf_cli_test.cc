@@ -1,0 +1,112 @@
+// Runs the real kerf binary as a user would and checks its output and exit status.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "absl/strings/str_cat.h"
+#include "google/protobuf/util/json_util.h"
+#include "kerf/v1/mesh_report.pb.h"
+#include "support/shared_meshes.h"
+
+namespace {
+
+using ::testing::HasSubstr;
+
+struct CliResult {
+  int exit_code;
+  std::string output;  // stdout and stderr together
+};
+
+CliResult Kerf(const std::string& args) {
+  const std::string command = absl::StrCat(KERF_BINARY, " ", args, " 2>&1");
+  FILE* pipe = popen(command.c_str(), "r");
+  EXPECT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+// The JSON that `mesh info --json` printed, parsed back with the proto's field names.
+kerf::v1::MeshReport ParseReport(const std::string& json) {
+  kerf::v1::MeshReport report;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(json, &report).ok()) << json;
+  return report;
+}
+
+TEST(KerfCli, DemoPrintsThePaperLattice) {
+  const CliResult run = Kerf("demo --json");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("\"tets\": 576"));
+  EXPECT_THAT(run.output, HasSubstr("\"valid\": true"));
+}
+
+TEST(KerfCli, LatticeThenInfoThenConvert) {
+  const std::string dir = ::testing::TempDir();
+  CliResult run = Kerf(absl::StrCat("mesh lattice 4 6 4 --size 0.04 0.06 0.04 --out ", dir, "/l.msh"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("175 vertices, 576 tets"));
+
+  run = Kerf(absl::StrCat("mesh info ", dir, "/l.msh --json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const kerf::v1::MeshReport report = ParseReport(run.output);
+  EXPECT_EQ(report.vertices(), 175u);
+  EXPECT_EQ(report.tets(), 576u);
+  EXPECT_EQ(report.boundary_triangles(), 256u);
+  EXPECT_EQ(report.components(), 1u);
+  EXPECT_TRUE(report.valid());
+  EXPECT_NEAR(report.min_dihedral_deg(), 45.0, 1e-9);
+  EXPECT_NEAR(report.volume(), 0.04 * 0.06 * 0.04, 1e-15);
+
+  run = Kerf(absl::StrCat("mesh convert ", dir, "/l.msh ", dir, "/l.vtu"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  run = Kerf(absl::StrCat("mesh info ", dir, "/l.vtu"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("vertices 175, tets 576, boundary triangles 256"));
+  EXPECT_THAT(run.output, HasSubstr("valid: yes"));
+}
+
+TEST(KerfCli, InfoOnSharedLiver) {
+  const std::string path = kerf::testing::SharedMeshPath("liver.msh");
+  if (path.empty()) GTEST_SKIP() << "shared/meshes is not beside the repo";
+  const CliResult run = Kerf(absl::StrCat("mesh info ", path, " --json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const kerf::v1::MeshReport report = ParseReport(run.output);
+  EXPECT_EQ(report.vertices(), 181u);
+  EXPECT_EQ(report.tets(), 596u);
+  EXPECT_NEAR(report.min_dihedral_deg(), 6.2, 0.005);  // as shared/meshes/SOURCES.md says
+  EXPECT_EQ(report.min_dihedral_histogram(0).tets() + report.min_dihedral_histogram(1).tets(),
+            81u);  // 13.6% of 596 under 20 degrees
+}
+
+TEST(KerfCli, NoCommandExitsTwoAndFailuresExitOneWithAMessage) {
+  EXPECT_EQ(Kerf("").exit_code, 2);
+  CliResult run = Kerf("frobnicate");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("unknown command 'frobnicate'"));
+  run = Kerf("mesh info");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("expected 1 argument(s), got 0"));
+  run = Kerf("mesh info a.msh --verbose");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("unknown option --verbose"));
+  run = Kerf("mesh lattice 4 x 4 --out /tmp/x.msh");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("NY must be an integer, got 'x'"));
+  run = Kerf("mesh lattice 4 6 4");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("--out FILE is required"));
+  run = Kerf("mesh lattice 4 6 4 --size 1 1 --out x.msh");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("--size needs 3 value(s)"));
+  run = Kerf("mesh info /no/such.msh");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("kerf: /no/such.msh: cannot open file"));
+}
+
+}  // namespace

@@ -1,0 +1,64 @@
+#include "mesh/mesh_change_log.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "support/status_message.h"
+
+#include "mesh/tet_mesh.h"
+
+namespace kerf::mesh {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::IsEmpty;
+
+TEST(MeshChangeLog, RecordsNetChangesSinceAMark) {
+  TetMesh mesh;
+  for (int i = 0; i < 4; ++i) mesh.AddVertex(Eigen::Vector3d(i == 1, i == 2, i == 3));
+  const ChangeMark start = mesh.change_log().Mark();
+  const TetId t0 = *mesh.AddTet({VertexId{0}, VertexId{1}, VertexId{2}, VertexId{3}});
+  const VertexId extra = mesh.AddVertex({1, 1, 1});
+  const ChangeMark middle = mesh.change_log().Mark();
+  const TetId t1 = *mesh.AddTet({VertexId{1}, VertexId{2}, VertexId{3}, extra});
+  ASSERT_TRUE(mesh.RemoveTet(t1).ok());  // added and removed within the interval
+  ASSERT_TRUE(mesh.RemoveTet(t0).ok());
+
+  absl::StatusOr<MeshChanges> all = mesh.change_log().ChangesSince(start);
+  ASSERT_TRUE(all.ok());
+  EXPECT_THAT(all->added_vertices, ElementsAre(extra));
+  EXPECT_THAT(all->added_tets, IsEmpty());
+  EXPECT_THAT(all->removed_tets, IsEmpty());
+
+  absl::StatusOr<MeshChanges> later = mesh.change_log().ChangesSince(middle);
+  ASSERT_TRUE(later.ok());
+  EXPECT_THAT(later->added_vertices, IsEmpty());
+  EXPECT_THAT(later->added_tets, IsEmpty());
+  EXPECT_THAT(later->removed_tets, ElementsAre(t0));
+
+  EXPECT_TRUE(mesh.change_log().ChangesSince(mesh.change_log().Mark())->empty());
+}
+
+TEST(MeshChangeLog, DiscardedHistoryIsAnErrorNotAWrongAnswer) {
+  MeshChangeLog log;
+  log.RecordAddedVertex(VertexId{0});
+  const ChangeMark one = log.Mark();
+  log.RecordAddedVertex(VertexId{1});
+  log.RecordRemovedVertex(VertexId{0});
+  log.DiscardBefore(one);
+  EXPECT_EQ(log.retained_events(), 2u);
+
+  absl::StatusOr<MeshChanges> since_one = log.ChangesSince(one);
+  ASSERT_TRUE(since_one.ok());
+  EXPECT_THAT(since_one->added_vertices, ElementsAre(VertexId{1}));
+  EXPECT_THAT(since_one->removed_vertices, ElementsAre(VertexId{0}));
+
+  absl::StatusOr<MeshChanges> since_start = log.ChangesSince(ChangeMark{0});
+  EXPECT_EQ(since_start.status().code(), absl::StatusCode::kOutOfRange);
+  EXPECT_EQ(kerf::testing::StatusMessage(since_start),
+            "changes since sequence 0 were discarded (history starts at 1); take a full snapshot");
+  EXPECT_EQ(log.ChangesSince(ChangeMark{99}).status().code(), absl::StatusCode::kOutOfRange);
+}
+
+}  // namespace
+}  // namespace kerf::mesh
