@@ -20,10 +20,10 @@ absl::StatusOr<std::optional<std::vector<absl::string_view>>> CommandArgs::TakeO
     absl::string_view name, int count) {
   const auto it = std::find(args_.begin(), args_.end(), name);
   if (it == args_.end()) return std::nullopt;
-  const bool enough = args_.end() - it > count &&
-                      std::none_of(it + 1, it + 1 + count, [](absl::string_view value) {
-                        return absl::StartsWith(value, "--");
-                      });
+  const bool enough =
+      args_.end() - it > count && std::none_of(it + 1, it + 1 + count, [](absl::string_view value) {
+        return absl::StartsWith(value, "--");
+      });
   if (!enough) {
     return absl::InvalidArgumentError(absl::StrCat(name, " needs ", count, " value(s)"));
   }

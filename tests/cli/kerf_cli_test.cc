@@ -1,11 +1,10 @@
 // Runs the real kerf binary as a user would and checks its output and exit status.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <string>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "absl/strings/str_cat.h"
 #include "google/protobuf/util/json_util.h"
@@ -48,7 +47,8 @@ TEST(KerfCli, DemoPrintsThePaperLattice) {
 
 TEST(KerfCli, LatticeThenInfoThenConvert) {
   const std::string dir = ::testing::TempDir();
-  CliResult run = Kerf(absl::StrCat("mesh lattice 4 6 4 --size 0.04 0.06 0.04 --out ", dir, "/l.msh"));
+  CliResult run =
+      Kerf(absl::StrCat("mesh lattice 4 6 4 --size 0.04 0.06 0.04 --out ", dir, "/l.msh"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("175 vertices, 576 tets"));
 

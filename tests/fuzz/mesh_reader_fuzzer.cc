@@ -45,10 +45,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   const absl::string_view text(reinterpret_cast<const char*>(bytes + 1), size - 1);
   absl::StatusOr<TetMeshData> data;
   switch (bytes[0] % 5) {
-    case 0: data = kerf::mesh::ParseGmshMsh(text, "fuzz.msh"); break;
-    case 1: data = kerf::mesh::ParseVtkLegacy(text, "fuzz.vtk"); break;
-    case 2: data = kerf::mesh::ParseVtu(text, "fuzz.vtu"); break;
-    case 3: data = kerf::mesh::ParseAbaqusInpMesh(text, "fuzz.inp"); break;
+    case 0:
+      data = kerf::mesh::ParseGmshMsh(text, "fuzz.msh");
+      break;
+    case 1:
+      data = kerf::mesh::ParseVtkLegacy(text, "fuzz.vtk");
+      break;
+    case 2:
+      data = kerf::mesh::ParseVtu(text, "fuzz.vtu");
+      break;
+    case 3:
+      data = kerf::mesh::ParseAbaqusInpMesh(text, "fuzz.inp");
+      break;
     case 4: {
       // The .node and .ele files, split at the first NUL (or all .node).
       const std::size_t split = std::min(text.find('\0'), text.size());

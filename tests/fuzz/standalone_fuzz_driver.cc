@@ -41,10 +41,18 @@ int main(int argc, char** argv) {
       const std::size_t at = 1 + random() % (input.size() - 1);  // byte 0 picks the reader
       constexpr char kInserted[] = "0123456789 -.e\n$<>\"=,*#";
       switch (random() % 4) {
-        case 0: input[at] ^= static_cast<char>(1 << (random() % 8)); break;
-        case 1: input.insert(at, 1, kInserted[random() % (sizeof(kInserted) - 1)]); break;
-        case 2: input.erase(at, 1 + random() % 8); break;
-        case 3: input.resize(at); break;
+        case 0:
+          input[at] ^= static_cast<char>(1 << (random() % 8));
+          break;
+        case 1:
+          input.insert(at, 1, kInserted[random() % (sizeof(kInserted) - 1)]);
+          break;
+        case 2:
+          input.erase(at, 1 + random() % 8);
+          break;
+        case 3:
+          input.resize(at);
+          break;
       }
     }
     run(input);

@@ -1,8 +1,8 @@
 #include "geometry/tet_measures.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace kerf::geometry {
 namespace {

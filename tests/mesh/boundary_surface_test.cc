@@ -33,12 +33,10 @@ TEST(ExtractBoundarySurface, LatticeBoundaryIsTheBoxFacesOrientedOutward) {
     // Every vertex on the box's surface.
     for (const VertexId v : tri.vertices) {
       const Eigen::Vector3d& p = mesh.rest_position(v);
-      EXPECT_TRUE(p.x() == 0 || p.x() == 3 || p.y() == 0 || p.y() == 4 || p.z() == 0 ||
-                  p.z() == 2);
+      EXPECT_TRUE(p.x() == 0 || p.x() == 3 || p.y() == 0 || p.y() == 4 || p.z() == 0 || p.z() == 2);
     }
-    EXPECT_FALSE(
-        TetHasVertex({tri.vertices[0], tri.vertices[1], tri.vertices[2], tri.vertices[2]},
-                     mesh.tet(tri.tet)[tri.opposite_corner]));
+    EXPECT_FALSE(TetHasVertex({tri.vertices[0], tri.vertices[1], tri.vertices[2], tri.vertices[2]},
+                              mesh.tet(tri.tet)[tri.opposite_corner]));
   }
   EXPECT_NEAR(area_sum.norm(), 0.0, 1e-12);
   EXPECT_NEAR(volume, 24.0, 1e-12);

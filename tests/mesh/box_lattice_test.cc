@@ -2,10 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include "support/status_message.h"
-
 #include "mesh/boundary_surface.h"
 #include "mesh/mesh_validation.h"
+#include "support/status_message.h"
 
 namespace kerf::mesh {
 namespace {
@@ -65,7 +64,8 @@ TEST(MakeBoxLattice, PhysicalSizeScalesTheBox) {
 TEST(MakeBoxLattice, RefusesBadSpecsByName) {
   BoxLatticeSpec spec;
   spec.cells_y = 0;
-  EXPECT_EQ(kerf::testing::StatusMessage(MakeBoxLattice(spec)), "cells_y must be in [1, 1024], got 0");
+  EXPECT_EQ(kerf::testing::StatusMessage(MakeBoxLattice(spec)),
+            "cells_y must be in [1, 1024], got 0");
   spec.cells_y = 1;
   spec.size = {1, -2, 1};
   EXPECT_EQ(kerf::testing::StatusMessage(MakeBoxLattice(spec)),

@@ -3,9 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "support/status_message.h"
-
 #include "mesh/tet_mesh.h"
+#include "support/status_message.h"
 
 namespace kerf::mesh {
 namespace {

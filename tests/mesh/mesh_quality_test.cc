@@ -1,8 +1,8 @@
 #include "mesh/mesh_quality.h"
 
-#include <numeric>
-
 #include <gtest/gtest.h>
+
+#include <numeric>
 
 #include "mesh/box_lattice.h"
 

@@ -58,7 +58,11 @@ void BM_TetsAroundFace(benchmark::State& state) {
   state.counters["tets"] = static_cast<double>(mesh.tet_count());
 }
 
-BENCHMARK(BM_BuildLattice)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)
+BENCHMARK(BM_BuildLattice)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Arg(1000000)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RemoveAndAddTet)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000);
 BENCHMARK(BM_TetsAroundFace)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000);

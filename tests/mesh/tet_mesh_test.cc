@@ -1,16 +1,15 @@
 #include "mesh/tet_mesh.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <map>
 #include <random>
 #include <set>
 
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-
-#include "support/status_message.h"
-
 #include "mesh/box_lattice.h"
+#include "support/status_message.h"
 
 namespace kerf::mesh {
 namespace {
@@ -89,8 +88,7 @@ TEST(TetMesh, AdjacencyOfTwoTetsSharingAFace) {
   EXPECT_THAT(mesh.TetsAroundEdge(VertexId{0}, e), UnorderedElementsAre());
   EXPECT_THAT(mesh.TetsAroundFace(VertexId{3}, VertexId{1}, VertexId{2}),
               UnorderedElementsAre(t0, t1));
-  EXPECT_THAT(mesh.TetsAroundFace(VertexId{0}, VertexId{1}, VertexId{2}),
-              UnorderedElementsAre(t0));
+  EXPECT_THAT(mesh.TetsAroundFace(VertexId{0}, VertexId{1}, VertexId{2}), UnorderedElementsAre(t0));
 }
 
 // Adjacency recomputed from scratch from the live tets.

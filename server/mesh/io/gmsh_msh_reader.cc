@@ -71,23 +71,12 @@ absl::Status SkipSection(TextScanner& s, absl::string_view name) {
   }
 }
 
-absl::StatusOr<Eigen::Vector3d> ReadPoint(TextScanner& s) {
-  Eigen::Vector3d p;
-  for (int axis = 0; axis < 3; ++axis) {
-    absl::StatusOr<double> x =
-        s.NextFiniteDouble(absl::StrCat("coordinate ", absl::string_view("xyz").substr(axis, 1)));
-    if (!x.ok()) return x.status();
-    p[axis] = *x;
-  }
-  return p;
-}
-
 // "<id> <x> <y> <z>" lines, v1 and v2 (and v4.0's per-node lines).
 absl::Status ReadNodeLines(TextScanner& s, std::int64_t count, TetMeshDataBuilder& builder) {
   for (std::int64_t i = 0; i < count; ++i) {
     absl::StatusOr<std::int64_t> id = s.NextInt("node id");
     if (!id.ok()) return id.status();
-    absl::StatusOr<Eigen::Vector3d> p = ReadPoint(s);
+    absl::StatusOr<Eigen::Vector3d> p = internal::ReadPoint(s);
     if (!p.ok()) return p.status();
     if (auto st = builder.AddPoint(*id, *p, s, s.token_offset()); !st.ok()) return st;
   }
@@ -174,23 +163,36 @@ absl::Status ReadVersion2Elements(TextScanner& s, TetMeshDataBuilder& builder) {
   return s.Expect("$EndElements");
 }
 
-absl::Status ReadVersion4Nodes(TextScanner& s, bool v41, TetMeshDataBuilder& builder) {
-  // numEntityBlocks numNodes [minNodeTag maxNodeTag (4.1)]
-  absl::StatusOr<std::int64_t> blocks = s.NextIntIn("node block count", 0, kMaxCount);
+// "numEntityBlocks numItems" and, in 4.1, "minTag maxTag": returns the block count.
+absl::StatusOr<std::int64_t> ReadVersion4SectionHeader(TextScanner& s, bool v41,
+                                                       absl::string_view item) {
+  absl::StatusOr<std::int64_t> blocks =
+      s.NextIntIn(absl::StrCat(item, " block count"), 0, kMaxCount);
   if (!blocks.ok()) return blocks.status();
-  if (absl::StatusOr<std::int64_t> n = s.NextIntIn("node count", 0, kMaxCount); !n.ok()) {
+  if (auto n = s.NextIntIn(absl::StrCat(item, " count"), 0, kMaxCount); !n.ok()) {
     return n.status();
   }
   if (v41) {
-    for (const char* what : {"smallest node tag", "largest node tag"}) {
-      if (absl::StatusOr<std::int64_t> tag = s.NextInt(what); !tag.ok()) return tag.status();
+    for (const char* which : {"smallest ", "largest "}) {
+      if (auto tag = s.NextInt(absl::StrCat(which, item, " tag")); !tag.ok()) return tag.status();
     }
   }
+  return blocks;
+}
+
+absl::Status SkipEntityDimensionAndTag(TextScanner& s) {
+  for (const char* what : {"entity dimension or tag", "entity tag or dimension"}) {
+    if (absl::StatusOr<std::int64_t> v = s.NextInt(what); !v.ok()) return v.status();
+  }
+  return absl::OkStatus();
+}
+
+absl::Status ReadVersion4Nodes(TextScanner& s, bool v41, TetMeshDataBuilder& builder) {
+  absl::StatusOr<std::int64_t> blocks = ReadVersion4SectionHeader(s, v41, "node");
+  if (!blocks.ok()) return blocks.status();
   for (std::int64_t b = 0; b < *blocks; ++b) {
     // 4.1: entityDim entityTag parametric numNodesInBlock; 4.0: entityTag entityDim ...
-    for (const char* what : {"entity dimension or tag", "entity tag or dimension"}) {
-      if (absl::StatusOr<std::int64_t> v = s.NextInt(what); !v.ok()) return v.status();
-    }
+    if (auto st = SkipEntityDimensionAndTag(s); !st.ok()) return st;
     absl::StatusOr<std::int64_t> parametric = s.NextIntIn("parametric flag", 0, 0);
     if (!parametric.ok()) return parametric.status();
     absl::StatusOr<std::int64_t> count = s.NextIntIn("nodes in block", 0, kMaxCount);
@@ -208,7 +210,7 @@ absl::Status ReadVersion4Nodes(TextScanner& s, bool v41, TetMeshDataBuilder& bui
       tags.push_back(*tag);
     }
     for (const std::int64_t tag : tags) {
-      absl::StatusOr<Eigen::Vector3d> p = ReadPoint(s);
+      absl::StatusOr<Eigen::Vector3d> p = internal::ReadPoint(s);
       if (!p.ok()) return p.status();
       if (auto st = builder.AddPoint(tag, *p, s, s.token_offset()); !st.ok()) return st;
     }
@@ -217,20 +219,11 @@ absl::Status ReadVersion4Nodes(TextScanner& s, bool v41, TetMeshDataBuilder& bui
 }
 
 absl::Status ReadVersion4Elements(TextScanner& s, bool v41, TetMeshDataBuilder& builder) {
-  absl::StatusOr<std::int64_t> blocks = s.NextIntIn("element block count", 0, kMaxCount);
+  absl::StatusOr<std::int64_t> blocks = ReadVersion4SectionHeader(s, v41, "element");
   if (!blocks.ok()) return blocks.status();
-  if (absl::StatusOr<std::int64_t> n = s.NextIntIn("element count", 0, kMaxCount); !n.ok()) {
-    return n.status();
-  }
-  if (v41) {
-    for (const char* what : {"smallest element tag", "largest element tag"}) {
-      if (absl::StatusOr<std::int64_t> tag = s.NextInt(what); !tag.ok()) return tag.status();
-    }
-  }
   for (std::int64_t b = 0; b < *blocks; ++b) {
-    for (const char* what : {"entity dimension or tag", "entity tag or dimension"}) {
-      if (absl::StatusOr<std::int64_t> v = s.NextInt(what); !v.ok()) return v.status();
-    }
+    // entityDim entityTag elementType numElementsInBlock (4.0: entityTag entityDim ...)
+    if (auto st = SkipEntityDimensionAndTag(s); !st.ok()) return st;
     absl::StatusOr<std::int64_t> type = s.NextInt("element type");
     if (!type.ok()) return type.status();
     if (*type != kTet4 && !IsLowerDimensionType(*type)) return UnsupportedType(s, *type);

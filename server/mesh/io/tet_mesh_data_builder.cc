@@ -39,6 +39,17 @@ absl::StatusOr<TetMeshData> TetMeshDataBuilder::Finish(const TextScanner& tet_sc
   return std::move(data_);
 }
 
+absl::StatusOr<Eigen::Vector3d> ReadPoint(TextScanner& s) {
+  Eigen::Vector3d p;
+  for (int axis = 0; axis < 3; ++axis) {
+    absl::StatusOr<double> x =
+        s.NextFiniteDouble(absl::StrCat("coordinate ", absl::string_view("xyz").substr(axis, 1)));
+    if (!x.ok()) return x.status();
+    p[axis] = *x;
+  }
+  return p;
+}
+
 std::size_t ReservableCount(std::int64_t declared, std::size_t text_size) {
   if (declared <= 0) return 0;
   return std::min(static_cast<std::size_t>(declared), text_size / 2);

@@ -36,6 +36,9 @@ class TetMeshDataBuilder {
   std::vector<PendingTet> tets_;
 };
 
+// Three finite coordinates x, y, z.
+absl::StatusOr<Eigen::Vector3d> ReadPoint(TextScanner& s);
+
 // A count read from a file, made safe to reserve: never more than the text could hold.
 std::size_t ReservableCount(std::int64_t declared, std::size_t text_size);
 

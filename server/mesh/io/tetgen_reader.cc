@@ -24,19 +24,14 @@ absl::Status ReadNodes(TextScanner& s, internal::TetMeshDataBuilder& builder) {
   for (std::int64_t i = 0; i < *count; ++i) {
     absl::StatusOr<std::int64_t> id = s.NextInt("point id");
     if (!id.ok()) return id.status();
-    Eigen::Vector3d p;
-    for (int axis = 0; axis < 3; ++axis) {
-      absl::StatusOr<double> x =
-          s.NextFiniteDouble(absl::StrCat("coordinate ", absl::string_view("xyz").substr(axis, 1)));
-      if (!x.ok()) return x.status();
-      p[axis] = *x;
-    }
+    absl::StatusOr<Eigen::Vector3d> p = internal::ReadPoint(s);
+    if (!p.ok()) return p.status();
     for (std::int64_t a = 0; a < *attributes + *markers; ++a) {
       if (absl::StatusOr<double> x = s.NextFiniteDouble("point attribute or marker"); !x.ok()) {
         return x.status();
       }
     }
-    if (auto st = builder.AddPoint(*id, p, s, s.token_offset()); !st.ok()) return st;
+    if (auto st = builder.AddPoint(*id, *p, s, s.token_offset()); !st.ok()) return st;
   }
   if (!s.AtEnd()) {
     s.NextToken();

@@ -111,13 +111,9 @@ absl::StatusOr<TetMeshData> ParseVtkLegacy(absl::string_view text, absl::string_
       s.NextToken();  // float or double
       data.points.reserve(internal::ReservableCount(*n, text.size()));
       for (std::int64_t i = 0; i < *n; ++i) {
-        Eigen::Vector3d p;
-        for (int axis = 0; axis < 3; ++axis) {
-          absl::StatusOr<double> x = s.NextFiniteDouble("point coordinate");
-          if (!x.ok()) return x.status();
-          p[axis] = *x;
-        }
-        data.points.push_back(p);
+        absl::StatusOr<Eigen::Vector3d> p = internal::ReadPoint(s);
+        if (!p.ok()) return p.status();
+        data.points.push_back(*p);
         data.point_ids.push_back(i);
       }
       have_points = true;

@@ -3,9 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "support/status_message.h"
-
 #include "mesh/io/abaqus_inp_blocks.h"
+#include "support/status_message.h"
 
 namespace kerf::mesh {
 namespace {
@@ -52,12 +51,14 @@ TEST(ParseInpKeywordBlocks, KeywordsAndParametersAreCaseInsensitive) {
 TEST(ParseAbaqusInpMesh, Errors) {
   const std::pair<std::string, std::string> cases[] = {
       {"1, 0, 0, 0\n", "e.inp:1: expected a *KEYWORD line before data"},
-      {"*NODE\n1, 0, 0\n", "e.inp:2: expected a *NODE line 'id, x, y, z' with an integer id "
-                           "and finite coordinates"},
+      {"*NODE\n1, 0, 0\n",
+       "e.inp:2: expected a *NODE line 'id, x, y, z' with an integer id "
+       "and finite coordinates"},
       {"*NODE\n1, 0, 0, 0\n1, 1, 1, 1\n", "e.inp:3: node 1 is defined twice"},
-      {"*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=C3D10\n", "e.inp:3: element type 'C3D10' is not "
-                                                    "supported: kerf reads linear tetrahedra "
-                                                    "(TYPE=C3D4)"},
+      {"*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=C3D10\n",
+       "e.inp:3: element type 'C3D10' is not "
+       "supported: kerf reads linear tetrahedra "
+       "(TYPE=C3D4)"},
       {"*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=C3D4\n1, 1, 1, 1, 2\n",
        "e.inp:4: tetrahedron names node 2, which is not defined"},
       {"*NODE\n1, 0, 0, 0\n", "e.inp:3: expected *NODE and *ELEMENT, TYPE=C3D4 blocks"},

@@ -22,10 +22,10 @@ TEST(Base64, DecodesConcatenatedPaddedBlocksAndSkipsWhitespace) {
 }
 
 TEST(Base64, RefusesBadInput) {
-  EXPECT_FALSE(Base64Decode("Zm9").has_value());    // truncated group
-  EXPECT_FALSE(Base64Decode("Z===").has_value());   // too much padding
-  EXPECT_FALSE(Base64Decode("Zm=v").has_value());   // data after padding
-  EXPECT_FALSE(Base64Decode("Zm9*").has_value());   // not in the alphabet
+  EXPECT_FALSE(Base64Decode("Zm9").has_value());   // truncated group
+  EXPECT_FALSE(Base64Decode("Z===").has_value());  // too much padding
+  EXPECT_FALSE(Base64Decode("Zm=v").has_value());  // data after padding
+  EXPECT_FALSE(Base64Decode("Zm9*").has_value());  // not in the alphabet
 }
 
 TEST(Base64, RoundTripsAllByteValues) {

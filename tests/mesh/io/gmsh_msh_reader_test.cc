@@ -3,11 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "support/status_message.h"
-
 #include "mesh/io/mesh_file.h"
 #include "mesh/mesh_validation.h"
 #include "support/shared_meshes.h"
+#include "support/status_message.h"
 
 namespace kerf::mesh {
 namespace {
@@ -132,8 +131,9 @@ TEST(ParseGmshMsh, ErrorsNameFileLineAndExpectation) {
        "bad.msh:4: expected coordinate y (a finite number), found 'x'"},
       {"$NOD\n1\n1 0 0 nan\n$ENDNOD\n",
        "bad.msh:3: expected coordinate z (a finite number), found 'nan'"},
-      {"$NOD\n-3\n", "bad.msh:2: expected node count (an integer in [0, 1099511627776]), "
-                     "found '-3'"},
+      {"$NOD\n-3\n",
+       "bad.msh:2: expected node count (an integer in [0, 1099511627776]), "
+       "found '-3'"},
       {"$NOD\n2\n1 0 0 0\n1 1 1 1\n$ENDNOD\n", "bad.msh:4: node 1 is defined twice"},
       {"$NOD\n1\n1 0 0 0\n$ENDNOD\n$ELM\n1\n1 4 0 0 4 1 1 1 7\n$ENDELM\n",
        "bad.msh:7: tetrahedron names node 7, which is not defined"},
@@ -142,8 +142,9 @@ TEST(ParseGmshMsh, ErrorsNameFileLineAndExpectation) {
       {"$NOD\n1\n1 0 0 0\n$ENDNOD\n$ELM\n1\n1 5 0 0 8 1 1 1 1 1 1 1 1\n$ENDELM\n",
        "bad.msh:7: element type 5 is not supported: kerf reads linear tetrahedra (type 4); "
        "surface and line elements are skipped"},
-      {"$NOD\n1\n1 0 0 0\n$ENDNOD\n", "bad.msh:5: expected both $NOD and $ELM sections, "
-                                      "found end of file"},
+      {"$NOD\n1\n1 0 0 0\n$ENDNOD\n",
+       "bad.msh:5: expected both $NOD and $ELM sections, "
+       "found end of file"},
       {"$MeshFormat\n2.2 1 8\n$EndMeshFormat\n",
        "bad.msh:2: binary MSH is not supported: save the mesh as ASCII"},
       {"$MeshFormat\n3.0 0 8\n$EndMeshFormat\n",

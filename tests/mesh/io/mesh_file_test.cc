@@ -2,9 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "support/status_message.h"
-
 #include "mesh/box_lattice.h"
+#include "support/status_message.h"
 
 namespace kerf::mesh {
 namespace {
@@ -26,8 +25,7 @@ TEST(MeshFile, ClearErrors) {
   EXPECT_EQ(kerf::testing::StatusMessage(ReadMeshFile("mesh.stl")),
             "mesh.stl: unknown mesh format '.stl'; kerf reads .msh, .vtk, .vtu, .node/.ele and "
             ".inp");
-  EXPECT_EQ(ReadMeshFile(::testing::TempDir()).status().code(),
-            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(ReadMeshFile(::testing::TempDir()).status().code(), absl::StatusCode::kInvalidArgument);
   BoxLatticeSpec spec;
   EXPECT_EQ(WriteMeshFile(*MakeBoxLattice(spec), "out.vtk").message(),
             "out.vtk: cannot write '.vtk'; kerf writes .vtu and .msh");

@@ -85,8 +85,8 @@ TEST(RoundTrip, SharedLiverThroughMshAndVtu) {
   const TetMesh mesh = *ReadMeshFile(path);
   const TetMeshData expected = ExtractTetMeshData(mesh);
   for (const bool msh : {true, false}) {
-    absl::StatusOr<TetMeshData> back = msh ? ParseGmshMsh(FormatGmshMsh4(mesh), "l.msh")
-                                           : ParseVtu(FormatVtu(mesh), "l.vtu");
+    absl::StatusOr<TetMeshData> back =
+        msh ? ParseGmshMsh(FormatGmshMsh4(mesh), "l.msh") : ParseVtu(FormatVtu(mesh), "l.vtu");
     ASSERT_TRUE(back.ok()) << back.status();
     EXPECT_EQ(back->points, expected.points);
     EXPECT_EQ(back->tets, expected.tets);

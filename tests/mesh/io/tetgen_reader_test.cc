@@ -38,11 +38,14 @@ TEST(ParseTetGen, Errors) {
   EXPECT_EQ(kerf::testing::StatusMessage(ParseTetGen(kNodes, "m.node", "1 10 0\n", "m.ele")),
             "m.ele:1: 10-node tetrahedra are not supported: kerf reads linear (4-node) "
             "tetrahedra");
-  EXPECT_EQ(kerf::testing::StatusMessage(ParseTetGen(kNodes, "m.node", "1 4 0\n0 0 1 2 5\n", "m.ele")),
-            "m.ele:2: tetrahedron names node 5, which is not defined");
-  EXPECT_EQ(kerf::testing::StatusMessage(ParseTetGen(kNodes, "m.node", "1 4 0\n0 0 1 2\n", "m.ele")),
-            "m.ele:3: expected corner point id (an integer), found end of file");
-  EXPECT_EQ(kerf::testing::StatusMessage(ParseTetGen("1 3 0 0\n0 0 0 0\n1 1 1 1\n", "m.node", "", "m.ele")),
+  EXPECT_EQ(
+      kerf::testing::StatusMessage(ParseTetGen(kNodes, "m.node", "1 4 0\n0 0 1 2 5\n", "m.ele")),
+      "m.ele:2: tetrahedron names node 5, which is not defined");
+  EXPECT_EQ(
+      kerf::testing::StatusMessage(ParseTetGen(kNodes, "m.node", "1 4 0\n0 0 1 2\n", "m.ele")),
+      "m.ele:3: expected corner point id (an integer), found end of file");
+  EXPECT_EQ(kerf::testing::StatusMessage(
+                ParseTetGen("1 3 0 0\n0 0 0 0\n1 1 1 1\n", "m.node", "", "m.ele")),
             "m.node:3: expected end of file after 1 points, found '1'");
 }
 

@@ -66,15 +66,17 @@ TEST(ParseVtkLegacy, Errors) {
        "bad.vtk:3: binary VTK legacy files are not supported: use ASCII"},
       {"# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\n",
        "bad.vtk:4: expected 'UNSTRUCTURED_GRID', found 'POLYDATA'"},
-      {head + "POINTS 1 float\n0 0\n", "bad.vtk:7: expected point coordinate (a finite number), "
-                                       "found end of file"},
+      {head + "POINTS 1 float\n0 0\n",
+       "bad.vtk:7: expected coordinate z (a finite number), "
+       "found end of file"},
       {head + "POINTS 1 float\n0 0 0\nCELLS 1 5\n4 0 0 0 3\nCELL_TYPES 1\n10\n",
        "bad.vtk:7: cell 0 names point 3 of 1"},
       {head + "POINTS 1 float\n0 0 0\nCELLS 1 9\n8 0 0 0 0 0 0 0 0\nCELL_TYPES 1\n12\n",
        "bad.vtk:7: cell 0 has type 12, which is not supported: kerf reads tetrahedra (type 10)"},
       {head + "POINTS 1 float\n0 0 0\nCELLS 1 6\n4 0 0 0 0\nCELL_TYPES 1\n10\n",
        "bad.vtk:8: CELLS declares size 6 but its cells hold 5 numbers"},
-      {head + "FIELD x 0\n", "bad.vtk:5: expected 'POINTS', 'CELLS' or 'CELL_TYPES', found 'FIELD'"},
+      {head + "FIELD x 0\n",
+       "bad.vtk:5: expected 'POINTS', 'CELLS' or 'CELL_TYPES', found 'FIELD'"},
   };
   for (const auto& [text, message] : cases) {
     const absl::StatusOr<TetMeshData> data = ParseVtkLegacy(text, "bad.vtk");

@@ -1,15 +1,14 @@
 #include "mesh/io/vtu_reader.h"
 
-#include <cstring>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "support/status_message.h"
+#include <cstring>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
 #include "mesh/io/base64.h"
+#include "support/status_message.h"
 
 namespace kerf::mesh {
 namespace {
@@ -24,9 +23,11 @@ std::string Vtu(const std::string& root_attributes, const std::string& points,
       "<?xml version=\"1.0\"?>\n<!-- written by hand -->\n<VTKFile type=\"UnstructuredGrid\" ",
       root_attributes, ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"", number_of_points,
       "\" NumberOfCells=\"3\">\n<PointData/>\n<Points>\n<DataArray type=\"Float64\" "
-      "NumberOfComponents=\"3\" format=\"", format, "\">", points,
+      "NumberOfComponents=\"3\" format=\"",
+      format, "\">", points,
       "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" "
-      "format=\"", format, "\">", connectivity,
+      "format=\"",
+      format, "\">", connectivity,
       "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"", format, "\">", offsets,
       "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"", format, "\">", types,
       "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
@@ -55,8 +56,8 @@ void ExpectTwoTets(const absl::StatusOr<TetMeshData>& data) {
 }
 
 TEST(ParseVtu, Ascii) {
-  ExpectTwoTets(ParseVtu(Vtu("", kAsciiPoints, "0 1 2 3 1 2 3 4 0 1 2", "4 8 11", "10 10 5"),
-                         "a.vtu"));
+  ExpectTwoTets(
+      ParseVtu(Vtu("", kAsciiPoints, "0 1 2 3 1 2 3 4 0 1 2", "4 8 11", "10 10 5"), "a.vtu"));
 }
 
 TEST(ParseVtu, BinaryWithEitherHeaderSizeAndEitherHeaderEncoding) {
@@ -100,7 +101,8 @@ TEST(ParseVtu, Errors) {
       {Vtu("", internal::Base64Encode(std::string("\x64\0\0\0", 4) + std::string(8, '\0')), "0",
            "1", "1", "binary"),
        "bad.vtu:8: DataArray (unnamed): header declares 100 bytes of Float64 but 8 bytes follow"},
-      {Vtu("", "!!!!", "0", "1", "1", "binary"), "bad.vtu:8: DataArray (unnamed): invalid base64 data"},
+      {Vtu("", "!!!!", "0", "1", "1", "binary"),
+       "bad.vtu:8: DataArray (unnamed): invalid base64 data"},
   };
   for (const auto& [text, message] : cases) {
     EXPECT_EQ(kerf::testing::StatusMessage(ParseVtu(text, "bad.vtu")), message) << text;

@@ -8,8 +8,9 @@ namespace kerf::mesh::internal {
 namespace {
 
 TEST(ParseXml, ElementsAttributesAndText) {
-  const char* text = "<?xml version='1.0'?>\n<!-- c -->\n<a x=\"1\" y='two'>\n"
-                     "  <b>hello</b>\n  <c/>\n</a>\n";
+  const char* text =
+      "<?xml version='1.0'?>\n<!-- c -->\n<a x=\"1\" y='two'>\n"
+      "  <b>hello</b>\n  <c/>\n</a>\n";
   absl::StatusOr<XmlElement> root = ParseXml(text, "t.xml");
   ASSERT_TRUE(root.ok()) << root.status();
   EXPECT_EQ(root->name, "a");
@@ -34,7 +35,8 @@ TEST(ParseXml, Errors) {
             absl::StatusCode::kInvalidArgument);
   std::string deep;
   for (int i = 0; i < 40; ++i) deep += "<a>";
-  EXPECT_EQ(kerf::testing::StatusMessage(ParseXml(deep, "t.xml")), "t.xml:1: XML nested too deeply");
+  EXPECT_EQ(kerf::testing::StatusMessage(ParseXml(deep, "t.xml")),
+            "t.xml:1: XML nested too deeply");
 }
 
 }  // namespace
