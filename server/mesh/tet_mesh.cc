@@ -108,6 +108,11 @@ const TetVertices& TetMesh::tet(TetId t) const {
   return tets_[Index(t)];
 }
 
+const TetVertices& TetMesh::tet_even_if_removed(TetId t) const {
+  assert(Index(t) < tets_.size());
+  return tets_[Index(t)];
+}
+
 std::span<const TetId> TetMesh::TetsAround(VertexId v) const {
   assert(IsAlive(v));
   const Star& star = stars_[Index(v)];

@@ -106,7 +106,7 @@ class TetMesh {
   const Eigen::Vector3d& current_position(VertexId v) const;
   void set_current_position(VertexId v, const Eigen::Vector3d& position);
 
-  // All positions indexed by Index(id), dead slots included (their values are meaningless).
+  // All positions indexed by Index(id). A removed vertex's slot keeps its last positions.
   std::span<const Eigen::Vector3d> rest_positions() const { return rest_; }
   std::span<const Eigen::Vector3d> current_positions() const { return current_; }
   std::span<Eigen::Vector3d> mutable_current_positions() { return current_; }
@@ -129,6 +129,9 @@ class TetMesh {
 
   // The corners of a live tet (asserted).
   const TetVertices& tet(TetId t) const;
+  // The corners of any tet ever added, live or removed: a removed tet's slot keeps them, so
+  // data attached to it can be taken back exactly (asserted: t was issued).
+  const TetVertices& tet_even_if_removed(TetId t) const;
 
   // --- Adjacency -----------------------------------------------------------------------------
 

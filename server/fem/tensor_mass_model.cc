@@ -1,0 +1,150 @@
+#include "fem/tensor_mass_model.h"
+
+#include <Eigen/Geometry>
+#include <cassert>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "fem/linear_tet_element.h"
+
+namespace kerf::fem {
+namespace {
+
+using mesh::Index;
+using mesh::TetId;
+using mesh::VertexId;
+
+std::uint64_t EdgeKey(VertexId a, VertexId b) { return (std::uint64_t{Index(a)} << 32) | Index(b); }
+
+std::array<Eigen::Vector3d, 4> RestCorners(const mesh::TetMesh& mesh, TetId t) {
+  // Corners of a removed tet stay readable: the mesh keeps dead slots' last values.
+  const mesh::TetVertices& v = mesh.tet_even_if_removed(t);
+  const auto rest = mesh.rest_positions();
+  return {rest[Index(v[0])], rest[Index(v[1])], rest[Index(v[2])], rest[Index(v[3])]};
+}
+
+absl::Status CheckRestVolumeNonZero(const mesh::TetMesh& mesh, TetId t) {
+  const std::array<Eigen::Vector3d, 4> x = RestCorners(mesh, t);
+  if ((x[1] - x[0]).cross(x[2] - x[0]).dot(x[3] - x[0]) == 0) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("tet ", Index(t), " has zero rest volume: its stiffness is undefined"));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+TensorMassModel::TensorMassModel(const mesh::TetMesh& mesh, const Material& material)
+    : mesh_(&mesh),
+      material_(material),
+      lame_(CalcLameParameters(material.youngs_modulus, material.poisson_ratio)) {}
+
+absl::StatusOr<TensorMassModel> TensorMassModel::Create(const mesh::TetMesh& mesh,
+                                                        const Material& material) {
+  if (absl::Status s = ValidateMaterial(material); !s.ok()) return s;
+  for (const TetId t : mesh.tets()) {
+    if (absl::Status s = CheckRestVolumeNonZero(mesh, t); !s.ok()) return s;
+  }
+  TensorMassModel model(mesh, material);
+  model.GrowToMesh();
+  for (const TetId t : mesh.tets()) model.Accumulate(t, +1);
+  model.synced_ = mesh.change_log().Mark();
+  return model;
+}
+
+absl::Status TensorMassModel::SyncWithMesh() {
+  absl::StatusOr<mesh::MeshChanges> changes = mesh_->change_log().ChangesSince(synced_);
+  if (!changes.ok()) return changes.status();
+  for (const TetId t : changes->added_tets) {
+    if (absl::Status s = CheckRestVolumeNonZero(*mesh_, t); !s.ok()) return s;
+  }
+  GrowToMesh();
+  for (const TetId t : changes->removed_tets) Accumulate(t, -1);
+  for (const TetId t : changes->added_tets) Accumulate(t, +1);
+  synced_ = mesh_->change_log().Mark();
+  return absl::OkStatus();
+}
+
+void TensorMassModel::GrowToMesh() {
+  const std::size_t n = mesh_->vertex_index_bound();
+  vertex_tensors_.resize(n, Eigen::Matrix3d::Zero());
+  masses_.resize(n, 0.0);
+}
+
+void TensorMassModel::Accumulate(TetId t, double sign) {
+  const mesh::TetVertices& v = mesh_->tet_even_if_removed(t);
+  const LinearTetStiffness k = ComputeLinearTetStiffness(RestCorners(*mesh_, t), lame_);
+  const double corner_mass = material_.density * k.volume / 4;
+  for (int a = 0; a < 4; ++a) {
+    vertex_tensors_[Index(v[a])] += sign * k.blocks[a][a];
+    masses_[Index(v[a])] += sign * corner_mass;
+  }
+  for (const auto& [i, j] : mesh::kTetEdges) {
+    // Store each edge once, from its lower vertex index.
+    const bool ordered = Index(v[i]) < Index(v[j]);
+    const int a = ordered ? i : j, b = ordered ? j : i;
+    const std::uint64_t key = EdgeKey(v[a], v[b]);
+    auto [it, inserted] = edge_slot_.try_emplace(key, static_cast<std::uint32_t>(edges_.size()));
+    if (inserted) edges_.push_back({v[a], v[b], Eigen::Matrix3d::Zero(), 0});
+    EdgeTensor& edge = edges_[it->second];
+    edge.k_ab += sign * k.blocks[a][b];
+    edge.tets = sign > 0 ? edge.tets + 1 : edge.tets - 1;
+    if (edge.tets == 0) {
+      // No tet has this edge any more: move the last edge into its slot.
+      const std::uint32_t slot = it->second;
+      edge_slot_.erase(it);
+      if (slot + 1 != edges_.size()) {
+        edges_[slot] = edges_.back();
+        edge_slot_[EdgeKey(edges_[slot].a, edges_[slot].b)] = slot;
+      }
+      edges_.pop_back();
+    }
+  }
+}
+
+const EdgeTensor* TensorMassModel::FindEdge(VertexId a, VertexId b) const {
+  if (Index(b) < Index(a)) std::swap(a, b);
+  const auto it = edge_slot_.find(EdgeKey(a, b));
+  return it == edge_slot_.end() ? nullptr : &edges_[it->second];
+}
+
+void TensorMassModel::MultiplyStiffness(std::span<const Eigen::Vector3d> u,
+                                        std::span<Eigen::Vector3d> f) const {
+  assert(u.size() >= vertex_tensors_.size() && f.size() >= vertex_tensors_.size());
+  for (std::size_t i = 0; i < vertex_tensors_.size(); ++i) f[i] = vertex_tensors_[i] * u[i];
+  for (const EdgeTensor& e : edges_) {
+    f[Index(e.a)] += e.k_ab * u[Index(e.b)];
+    f[Index(e.b)] += e.k_ab.transpose() * u[Index(e.a)];
+  }
+}
+
+Eigen::SparseMatrix<double> TensorMassModel::AssembleStiffness() const {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(9 * (vertex_tensors_.size() + 2 * edges_.size()));
+  auto add_block = [&](std::uint32_t row, std::uint32_t col, const Eigen::Matrix3d& block) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        if (block(r, c) != 0) entries.emplace_back(3 * row + r, 3 * col + c, block(r, c));
+      }
+    }
+  };
+  for (std::uint32_t i = 0; i < vertex_tensors_.size(); ++i) add_block(i, i, vertex_tensors_[i]);
+  for (const EdgeTensor& e : edges_) {
+    add_block(Index(e.a), Index(e.b), e.k_ab);
+    add_block(Index(e.b), Index(e.a), e.k_ab.transpose());
+  }
+  const auto n = static_cast<Eigen::Index>(3 * vertex_tensors_.size());
+  Eigen::SparseMatrix<double> k(n, n);
+  k.setFromTriplets(entries.begin(), entries.end());
+  return k;
+}
+
+double TensorMassModel::ElasticEnergy(std::span<const Eigen::Vector3d> u) const {
+  std::vector<Eigen::Vector3d> f(vertex_tensors_.size());
+  MultiplyStiffness(u, f);
+  double energy = 0;
+  for (std::size_t i = 0; i < f.size(); ++i) energy += 0.5 * u[i].dot(f[i]);
+  return energy;
+}
+
+}  // namespace kerf::fem

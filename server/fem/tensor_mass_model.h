@@ -1,0 +1,87 @@
+// The paper's tensor-mass form of linear FEM (section 5): the global stiffness split into a
+// 3x3 tensor per vertex (K_ii) and per edge (K_ij), with mass lumped at the vertices, kept in
+// step with a mesh as its tets change.
+//
+// Incremental by construction: the model follows the mesh through the mesh's change log.
+// SyncWithMesh() subtracts the contributions of tets removed since the last sync and adds
+// those of tets added, at a cost proportional to the tets changed; the result equals a model
+// built from scratch to rounding. Per-vertex and per-edge data grow with the mesh there and
+// nowhere else.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "absl/container/flat_hash_map.h"
+#include "absl/status/statusor.h"
+#include "fem/material.h"
+#include "mesh/tet_mesh.h"
+
+namespace kerf::fem {
+
+// The stiffness between two vertices, a < b by index: the force on a due to b's displacement
+// is k_ab u_b, and on b due to a's is k_ab^T u_a.
+struct EdgeTensor {
+  mesh::VertexId a;
+  mesh::VertexId b;
+  Eigen::Matrix3d k_ab;
+  std::uint32_t tets;  // live tets sharing this edge
+};
+
+class TensorMassModel {
+ public:
+  // Builds from every live tet of `mesh`, which must outlive the model and only change
+  // through its own API. INVALID_ARGUMENT for an invalid material or a tet with zero rest
+  // volume.
+  static absl::StatusOr<TensorMassModel> Create(const mesh::TetMesh& mesh,
+                                                const Material& material);
+
+  // Applies the mesh's tet additions and removals since the last sync. INVALID_ARGUMENT
+  // (and nothing applied) if an added tet has zero rest volume. O(tets changed).
+  absl::Status SyncWithMesh();
+
+  // f = K u: the paper's Eq. 2, f_i = K_ii u_i + sum_j K_ij u_j. u and f are indexed by vertex
+  // index and must hold mesh.vertex_index_bound() entries. The elastic force the body exerts
+  // on its vertices is -f. O(vertices + edges).
+  void MultiplyStiffness(std::span<const Eigen::Vector3d> u, std::span<Eigen::Vector3d> f) const;
+
+  // The global 3n x 3n stiffness assembled from the tensors, n = vertex_index_bound().
+  Eigen::SparseMatrix<double> AssembleStiffness() const;
+
+  // Elastic energy u^T K u / 2.
+  double ElasticEnergy(std::span<const Eigen::Vector3d> u) const;
+
+  const Material& material() const { return material_; }
+  const mesh::TetMesh& mesh() const { return *mesh_; }
+  std::size_t vertex_count() const { return vertex_tensors_.size(); }
+  const Eigen::Matrix3d& vertex_tensor(mesh::VertexId v) const {
+    return vertex_tensors_[mesh::Index(v)];
+  }
+  // Lumped mass: rho V / 4 from each tet at the vertex.
+  double mass(mesh::VertexId v) const { return masses_[mesh::Index(v)]; }
+  std::span<const double> masses() const { return masses_; }
+  std::span<const EdgeTensor> edges() const { return edges_; }
+  // The tensor of the edge between a and b, or nullptr if no tet has that edge.
+  const EdgeTensor* FindEdge(mesh::VertexId a, mesh::VertexId b) const;
+
+ private:
+  TensorMassModel(const mesh::TetMesh& mesh, const Material& material);
+
+  void GrowToMesh();
+  // Adds (sign +1) or subtracts (sign -1) the contributions of tet t.
+  void Accumulate(mesh::TetId t, double sign);
+
+  const mesh::TetMesh* mesh_;
+  Material material_;
+  LameParameters lame_;
+  mesh::ChangeMark synced_;
+  std::vector<Eigen::Matrix3d> vertex_tensors_;
+  std::vector<double> masses_;
+  std::vector<EdgeTensor> edges_;
+  absl::flat_hash_map<std::uint64_t, std::uint32_t> edge_slot_;  // edge key -> index in edges_
+};
+
+}  // namespace kerf::fem
