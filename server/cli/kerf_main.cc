@@ -6,6 +6,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "cli/mesh_commands.h"
+#include "cli/sim_command.h"
 #include "cli/static_command.h"
 
 namespace {
@@ -15,6 +16,8 @@ constexpr absl::string_view kUsage =
     "       kerf mesh info FILE [--json]\n"
     "       kerf mesh lattice NX NY NZ [--size X Y Z] --out FILE\n"
     "       kerf mesh convert IN OUT\n"
+    "       kerf sim run SCENE [--steps N] [--vtu-out DIR]\n"
+    "       kerf sim list\n"
     "       kerf static DECK.inp [--json]\n";
 
 }  // namespace
@@ -29,6 +32,8 @@ int main(int argc, char** argv) {
   absl::StatusOr<std::string> result;
   if (args[0] == "mesh") {
     result = kerf::cli::RunMeshCommand(rest);
+  } else if (args[0] == "sim") {
+    result = kerf::cli::RunSimCommand(rest);
   } else if (args[0] == "static") {
     result = kerf::cli::RunStaticCommand(rest);
   } else if (args[0] == "demo") {

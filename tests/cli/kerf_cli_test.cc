@@ -4,6 +4,8 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "absl/strings/str_cat.h"
@@ -82,6 +84,36 @@ TEST(KerfCli, InfoOnSharedLiver) {
   EXPECT_NEAR(report.min_dihedral_deg(), 6.2, 0.005);  // as shared/meshes/SOURCES.md says
   EXPECT_EQ(report.min_dihedral_histogram(0).tets() + report.min_dihedral_histogram(1).tets(),
             81u);  // 13.6% of 596 under 20 degrees
+}
+
+TEST(KerfCli, SimRunWritesFramesAParaViewCollectionAndASummary) {
+  const std::string dir = ::testing::TempDir() + "/frames";
+  const CliResult run = Kerf(absl::StrCat("sim run bar-cantilever --steps 250 --vtu-out ", dir));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("scene bar-cantilever: 99 vertices, 240 tets"));
+  EXPECT_THAT(run.output, HasSubstr("250 steps"));
+  EXPECT_THAT(run.output, HasSubstr("wrote 126 VTU frames"));  // the start, then every 2 steps
+  const CliResult info = Kerf(absl::StrCat("mesh info ", dir, "/frame_000125.vtu"));
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_THAT(info.output, HasSubstr("vertices 99, tets 240"));
+  std::ifstream pvd(dir + "/bar-cantilever.pvd");
+  const std::string collection((std::istreambuf_iterator<char>(pvd)), {});
+  EXPECT_THAT(collection, HasSubstr("file=\"frame_000125.vtu\""));
+}
+
+TEST(KerfCli, SimAndStaticErrors) {
+  CliResult run = Kerf("sim run nowhere");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("no embedded scene 'nowhere'"));
+  run = Kerf("sim run bar-cantilever --steps -3");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("--steps must be >= 0, got -3"));
+  run = Kerf("static /no/deck.inp");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("/no/deck.inp: cannot open file"));
+  run = Kerf("sim list");
+  EXPECT_EQ(run.exit_code, 0);
+  EXPECT_THAT(run.output, HasSubstr("lattice-tension: The paper's 4x6x4 lattice"));
 }
 
 TEST(KerfCli, NoCommandExitsTwoAndFailuresExitOneWithAMessage) {

@@ -1,0 +1,219 @@
+#include "sim/scene.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "google/protobuf/io/tokenizer.h"
+#include "google/protobuf/text_format.h"
+#include "mesh/box_lattice.h"
+#include "mesh/io/mesh_file.h"
+#include "sim/embedded_scenes.h"
+
+namespace kerf::sim {
+namespace {
+
+Eigen::Vector3d ToEigen(const kerf::v1::Vector3& v) { return {v.x(), v.y(), v.z()}; }
+
+class ErrorCollector : public google::protobuf::io::ErrorCollector {
+ public:
+  void AddError(int line, google::protobuf::io::ColumnNumber column,
+                const std::string& message) override {
+    if (first_.empty()) first_ = absl::StrCat(line + 1, ":", column + 1, ": ", message);
+  }
+  const std::string& first() const { return first_; }
+
+ private:
+  std::string first_;
+};
+
+absl::StatusOr<std::vector<mesh::VertexId>> Select(const mesh::TetMesh& mesh,
+                                                   const kerf::v1::VertexSelection& selection,
+                                                   const std::string& field) {
+  // Positions within a billionth of the mesh's size of a boundary count as on it.
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
+  for (const mesh::VertexId v : mesh.vertices()) {
+    low = low.cwiseMin(mesh.rest_position(v));
+    high = high.cwiseMax(mesh.rest_position(v));
+  }
+  const double tolerance = 1e-9 * (high - low).norm();
+  std::vector<mesh::VertexId> selected;
+  switch (selection.selection_case()) {
+    case kerf::v1::VertexSelection::kBox: {
+      const Eigen::Vector3d lo = ToEigen(selection.box().min()).array() - tolerance;
+      const Eigen::Vector3d hi = ToEigen(selection.box().max()).array() + tolerance;
+      for (const mesh::VertexId v : mesh.vertices()) {
+        const Eigen::Vector3d& p = mesh.rest_position(v);
+        if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) {
+          selected.push_back(v);
+        }
+      }
+      break;
+    }
+    case kerf::v1::VertexSelection::kHalfSpace: {
+      const Eigen::Vector3d point = ToEigen(selection.half_space().point());
+      Eigen::Vector3d normal = ToEigen(selection.half_space().normal());
+      if (!(normal.norm() > 0) || !normal.allFinite() || !point.allFinite()) {
+        return absl::InvalidArgumentError(
+            absl::StrCat(field, ".half_space: normal must be non-zero and finite"));
+      }
+      normal.normalize();
+      for (const mesh::VertexId v : mesh.vertices()) {
+        if ((mesh.rest_position(v) - point).dot(normal) >= -tolerance) selected.push_back(v);
+      }
+      break;
+    }
+    case kerf::v1::VertexSelection::kIds:
+      for (const std::uint32_t id : selection.ids().ids()) {
+        if (!mesh.IsAlive(mesh::VertexId{id})) {
+          return absl::InvalidArgumentError(absl::StrCat(field, ".ids: no vertex ", id));
+        }
+        selected.push_back(mesh::VertexId{id});
+      }
+      break;
+    case kerf::v1::VertexSelection::SELECTION_NOT_SET:
+      return absl::InvalidArgumentError(absl::StrCat(field, ": choose box, half_space or ids"));
+  }
+  if (selected.empty()) {
+    return absl::InvalidArgumentError(absl::StrCat(field, " selects no vertex"));
+  }
+  return selected;
+}
+
+absl::StatusOr<mesh::TetMesh> BuildMesh(const kerf::v1::MeshSource& source,
+                                        absl::string_view base_dir) {
+  switch (source.source_case()) {
+    case kerf::v1::MeshSource::kFile: {
+      std::filesystem::path path(source.file());
+      if (path.is_relative()) path = std::filesystem::path(std::string(base_dir)) / path;
+      return mesh::ReadMeshFile(path.string());
+    }
+    case kerf::v1::MeshSource::kLattice: {
+      const kerf::v1::BoxLattice& l = source.lattice();
+      mesh::BoxLatticeSpec spec;
+      spec.cells_x = l.cells_x();
+      spec.cells_y = l.cells_y();
+      spec.cells_z = l.cells_z();
+      spec.size = ToEigen(l.size());
+      absl::StatusOr<mesh::TetMesh> mesh = mesh::MakeBoxLattice(spec);
+      if (!mesh.ok()) {
+        return absl::InvalidArgumentError(absl::StrCat("mesh.lattice: ", mesh.status().message()));
+      }
+      return mesh;
+    }
+    case kerf::v1::MeshSource::SOURCE_NOT_SET:
+      break;
+  }
+  return absl::InvalidArgumentError("mesh: choose file or lattice");
+}
+
+absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_dir) {
+  absl::StatusOr<mesh::TetMesh> mesh = BuildMesh(spec.mesh(), base_dir);
+  if (!mesh.ok()) return mesh.status();
+  Scene scene{spec.name(),
+              *std::move(mesh),
+              {},
+              {},
+              spec.integration().method(),
+              spec.integration().time_step()};
+  const kerf::v1::Material& m = spec.material();
+  scene.material = {m.youngs_modulus(), m.poisson_ratio(), m.density(), m.mass_damping(),
+                    m.stiffness_damping()};
+  if (absl::Status s = fem::ValidateMaterial(scene.material); !s.ok()) {
+    return absl::InvalidArgumentError(absl::StrCat("material.", s.message()));
+  }
+  if (scene.method == kerf::v1::Integration::METHOD_UNSPECIFIED) {
+    scene.method = kerf::v1::Integration::SYMPLECTIC_EULER;
+  }
+  if (!std::isfinite(scene.time_step) || scene.time_step < 0) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "integration.time_step must be positive (s), or 0 to choose, got ", scene.time_step));
+  }
+  for (int i = 0; i < spec.displacements_size(); ++i) {
+    const std::string field = absl::StrCat("displacements[", i, "].vertices");
+    absl::StatusOr<std::vector<mesh::VertexId>> vertices =
+        Select(scene.mesh, spec.displacements(i).vertices(), field);
+    if (!vertices.ok()) return vertices.status();
+    const Eigen::Vector3d d = ToEigen(spec.displacements(i).displacement());
+    if (!d.allFinite()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("displacements[", i, "].displacement must be finite"));
+    }
+    for (const mesh::VertexId v : *vertices) {
+      for (int c = 0; c < 3; ++c) scene.conditions.prescribed.push_back({v, c, d[c]});
+    }
+  }
+  for (int i = 0; i < spec.loads_size(); ++i) {
+    absl::StatusOr<std::vector<mesh::VertexId>> vertices =
+        Select(scene.mesh, spec.loads(i).vertices(), absl::StrCat("loads[", i, "].vertices"));
+    if (!vertices.ok()) return vertices.status();
+    const Eigen::Vector3d force = ToEigen(spec.loads(i).total_force());
+    if (!force.allFinite()) {
+      return absl::InvalidArgumentError(absl::StrCat("loads[", i, "].total_force must be finite"));
+    }
+    for (const mesh::VertexId v : *vertices) {
+      scene.conditions.loads.push_back({v, force / static_cast<double>(vertices->size())});
+    }
+  }
+  scene.conditions.gravity = ToEigen(spec.gravity());
+  if (!scene.conditions.gravity.allFinite()) {
+    return absl::InvalidArgumentError("gravity must be finite");
+  }
+  return scene;
+}
+
+}  // namespace
+
+absl::StatusOr<kerf::v1::Scene> ParseSceneText(absl::string_view text, absl::string_view source) {
+  kerf::v1::Scene scene;
+  ErrorCollector errors;
+  google::protobuf::TextFormat::Parser parser;
+  parser.RecordErrorsTo(&errors);
+  if (!parser.ParseFromString(std::string(text), &scene)) {
+    return absl::InvalidArgumentError(absl::StrCat(source, ":", errors.first()));
+  }
+  return scene;
+}
+
+absl::StatusOr<Scene> BuildScene(const kerf::v1::Scene& spec, absl::string_view base_dir) {
+  absl::StatusOr<Scene> scene = Build(spec, base_dir);
+  if (!scene.ok()) {
+    return absl::Status(scene.status().code(),
+                        absl::StrCat("scene '", spec.name(), "': ", scene.status().message()));
+  }
+  return scene;
+}
+
+std::vector<std::string> EmbeddedSceneNames() {
+  std::vector<std::string> names;
+  for (const auto& [name, text] : internal::kEmbeddedScenes) names.emplace_back(name);
+  return names;
+}
+
+absl::StatusOr<std::string> EmbeddedSceneText(absl::string_view name) {
+  for (const auto& [embedded, text] : internal::kEmbeddedScenes) {
+    if (absl::string_view(embedded) == name) return std::string(text);
+  }
+  return absl::NotFoundError(absl::StrCat("no embedded scene '", name, "' (there are: ",
+                                          absl::StrJoin(EmbeddedSceneNames(), ", "), ")"));
+}
+
+absl::StatusOr<Scene> LoadScene(absl::string_view name_or_path) {
+  std::string source(name_or_path);
+  absl::StatusOr<std::string> text = EmbeddedSceneText(name_or_path);
+  const bool embedded = text.ok();
+  if (!embedded) {
+    std::error_code error;
+    if (!std::filesystem::exists(source, error)) return text.status();
+    text = mesh::ReadTextFile(source);
+    if (!text.ok()) return text.status();
+  }
+  absl::StatusOr<kerf::v1::Scene> spec = ParseSceneText(*text, source);
+  if (!spec.ok()) return spec.status();
+  // Mesh files named by a scene file are found beside it.
+  const std::string folder = embedded ? "" : std::filesystem::path(source).parent_path().string();
+  return BuildScene(*spec, folder.empty() ? absl::string_view(".") : absl::string_view(folder));
+}
+
+}  // namespace kerf::sim

@@ -1,0 +1,44 @@
+// A simulation scene: a kerf.v1.Scene message (proto/kerf/v1/scene.proto) made concrete and
+// checked: the mesh built, the material validated, the conditions turned into per-vertex
+// prescriptions and loads.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "fem/boundary_conditions.h"
+#include "fem/material.h"
+#include "kerf/v1/scene.pb.h"
+#include "mesh/tet_mesh.h"
+
+namespace kerf::sim {
+
+struct Scene {
+  std::string name;
+  mesh::TetMesh mesh;
+  fem::Material material;
+  fem::BoundaryConditions conditions;
+  kerf::v1::Integration::Method method = kerf::v1::Integration::SYMPLECTIC_EULER;
+  double time_step = 0;  // s; 0: 0.9 of the estimated critical step
+};
+
+// Parses protobuf text format. INVALID_ARGUMENT "source:line:column: ..." for a syntax error
+// or an unknown field.
+absl::StatusOr<kerf::v1::Scene> ParseSceneText(absl::string_view text, absl::string_view source);
+
+// Builds and validates a scene. Mesh files are found relative to `base_dir`. INVALID_ARGUMENT
+// naming the scene and the field for any invalid value or a selection with no vertex.
+// Where conditions select the same vertex, the later one wins.
+absl::StatusOr<Scene> BuildScene(const kerf::v1::Scene& spec, absl::string_view base_dir);
+
+// A scene by the name of an embedded scene or by the path of a text-format file.
+absl::StatusOr<Scene> LoadScene(absl::string_view name_or_path);
+
+// The scenes compiled into kerf (from server/sim/scenes/).
+std::vector<std::string> EmbeddedSceneNames();
+// The text of an embedded scene; NOT_FOUND naming the scenes there are.
+absl::StatusOr<std::string> EmbeddedSceneText(absl::string_view name);
+
+}  // namespace kerf::sim

@@ -1,0 +1,45 @@
+// A running scene: its mesh, the tensor-mass model that follows it, and the dynamic state,
+// advanced one time step at a time. What the command line runs headless and what a service
+// session will step.
+#pragma once
+
+#include <memory>
+
+#include "absl/status/statusor.h"
+#include "fem/explicit_integrator.h"
+#include "fem/tensor_mass_model.h"
+#include "sim/scene.h"
+
+namespace kerf::sim {
+
+class Simulation {
+ public:
+  // INVALID_ARGUMENT for a scene whose stiffness cannot be built (a flat tet) or whose
+  // conditions do not fit its mesh; FAILED_PRECONDITION for a STATIC scene that is not held.
+  static absl::StatusOr<std::unique_ptr<Simulation>> Create(Scene scene);
+
+  // Advances by time_step() (SYMPLECTIC_EULER), or does nothing (STATIC: solved in Create).
+  // Afterwards the mesh's current positions are rest plus displacement. O(vertices + edges).
+  void Step();
+
+  const Scene& scene() const { return scene_; }
+  const mesh::TetMesh& mesh() const { return scene_.mesh; }
+  const fem::TensorMassModel& model() const { return *model_; }
+  const fem::DynamicState& state() const { return state_; }
+  double time_step() const { return time_step_; }
+  // 2 / omega_max of the model as built (see fem::EstimateCriticalTimeStep).
+  double critical_time_step() const { return critical_time_step_; }
+
+ private:
+  explicit Simulation(Scene scene) : scene_(std::move(scene)) {}
+  void UpdateCurrentPositions();
+
+  Scene scene_;  // owns the mesh the model points to; Simulation is not movable
+  std::unique_ptr<fem::TensorMassModel> model_;
+  std::unique_ptr<fem::ExplicitIntegrator> integrator_;
+  fem::DynamicState state_;
+  double time_step_ = 0;
+  double critical_time_step_ = 0;
+};
+
+}  // namespace kerf::sim

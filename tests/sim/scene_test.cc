@@ -1,0 +1,112 @@
+#include "sim/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "absl/strings/str_replace.h"
+#include "sim/simulation.h"
+#include "support/status_message.h"
+
+namespace kerf::sim {
+namespace {
+
+using kerf::testing::StatusMessage;
+
+TEST(LoadScene, EmbeddedScenesBuild) {
+  EXPECT_EQ(EmbeddedSceneNames(), (std::vector<std::string>{"lattice-tension", "bar-cantilever"}));
+  absl::StatusOr<Scene> tension = LoadScene("lattice-tension");
+  ASSERT_TRUE(tension.ok()) << tension.status();
+  EXPECT_EQ(tension->mesh.tet_count(), 576u);
+  // 5 x 5 vertices at each end of the 4 x 6 x 4 lattice, three components each.
+  EXPECT_EQ(tension->conditions.prescribed.size(), 2u * 25 * 3);
+  double pulled = 0;
+  for (const auto& p : tension->conditions.prescribed) pulled = std::max(pulled, p.value);
+  EXPECT_DOUBLE_EQ(pulled, 0.006);
+  absl::StatusOr<Scene> cantilever = LoadScene("bar-cantilever");
+  ASSERT_TRUE(cantilever.ok()) << cantilever.status();
+  EXPECT_EQ(cantilever->conditions.gravity, Eigen::Vector3d(0, 0, -1));
+}
+
+TEST(LoadScene, UnknownNamesAndFilesAreClearErrors) {
+  EXPECT_EQ(StatusMessage(LoadScene("liver-cut")),
+            "no embedded scene 'liver-cut' (there are: lattice-tension, bar-cantilever)");
+}
+
+std::string Tension() { return *EmbeddedSceneText("lattice-tension"); }
+
+TEST(ParseSceneText, UnknownFieldIsAnErrorWithItsPlace) {
+  const std::string text = absl::StrReplaceAll(Tension(), {{"poisson_ratio: 0.45", "poisson: 1"}});
+  EXPECT_EQ(StatusMessage(ParseSceneText(text, "s.textproto")),
+            "s.textproto:13:10: Message type \"kerf.v1.Material\" has no field named \"poisson\".");
+}
+
+TEST(ParseSceneText, TwoMeshSourcesAreAnError) {
+  const std::string text =
+      absl::StrReplaceAll(Tension(), {{"mesh {\n", "mesh {\n  file: \"x.msh\"\n"}});
+  EXPECT_EQ(StatusMessage(ParseSceneText(text, "s.textproto")),
+            "s.textproto:10:11: Field \"lattice\" is specified along with field \"file\", another "
+            "member of oneof \"source\".");
+}
+
+TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
+  const std::pair<std::string, std::string> cases[] = {
+      {absl::StrReplaceAll(Tension(), {{"poisson_ratio: 0.45", "poisson_ratio: 0.5"}}),
+       "scene 'lattice-tension': material.poisson_ratio must be strictly between -1 and 0.5, "
+       "got 0.5"},
+      {absl::StrReplaceAll(Tension(), {{"point { y: 0.06 }", "point { y: 0.07 }"}}),
+       "scene 'lattice-tension': displacements[1].vertices selects no vertex"},
+      {absl::StrReplaceAll(Tension(), {{"cells_x: 4", "cells_x: 0"}}),
+       "scene 'lattice-tension': mesh.lattice: cells_x must be in [1, 1024], got 0"},
+      {absl::StrReplaceAll(Tension(), {{"normal { y: -1 }", "normal { }"}}),
+       "scene 'lattice-tension': displacements[0].vertices.half_space: normal must be non-zero "
+       "and finite"},
+      {Tension() + "integration { time_step: -1 }\n",
+       "scene 'lattice-tension': integration.time_step must be positive (s), or 0 to choose, got "
+       "-1"},
+      {Tension() + "loads { vertices { ids { ids: 9999 } } total_force { x: 1 } }\n",
+       "scene 'lattice-tension': loads[0].vertices.ids: no vertex 9999"},
+      {absl::StrReplaceAll(Tension(),
+                           {{"lattice { cells_x: 4 cells_y: 6 cells_z: 4 size { x: 0.04 y: 0.06 "
+                             "z: 0.04 } }",
+                             "file: \"none.msh\""}}),
+       "scene 'lattice-tension': ./none.msh: cannot open file"},
+  };
+  for (const auto& [text, message] : cases) {
+    absl::StatusOr<kerf::v1::Scene> spec = ParseSceneText(text, "s.textproto");
+    ASSERT_TRUE(spec.ok()) << spec.status();
+    EXPECT_EQ(StatusMessage(BuildScene(*spec, ".")), message);
+  }
+}
+
+TEST(Simulation, StaticCantileverReproducesTheReferenceDeflection) {
+  kerf::v1::Scene spec = *ParseSceneText(*EmbeddedSceneText("bar-cantilever"), "b");
+  spec.mutable_integration()->set_method(kerf::v1::Integration::STATIC);
+  absl::StatusOr<std::unique_ptr<Simulation>> s = Simulation::Create(*BuildScene(spec, "."));
+  ASSERT_TRUE(s.ok()) << s.status();
+  const mesh::VertexId tip_centre{10 + 11 * (1 + 3 * 1)};
+  EXPECT_NEAR(-(*s)->state().displacement[mesh::Index(tip_centre)].z(), 0.06057, 5e-6);
+  // The mesh's current positions follow the displacement.
+  EXPECT_EQ(
+      (*s)->mesh().current_position(tip_centre),
+      (*s)->mesh().rest_position(tip_centre) + (*s)->state().displacement[mesh::Index(tip_centre)]);
+}
+
+TEST(Simulation, ExplicitCantileverSettlesToTheSameDeflection) {
+  absl::StatusOr<std::unique_ptr<Simulation>> s = Simulation::Create(*LoadScene("bar-cantilever"));
+  ASSERT_TRUE(s.ok()) << s.status();
+  EXPECT_NEAR((*s)->time_step(), 0.9 * (*s)->critical_time_step(), 1e-15);
+  for (int step = 0; step < 20000; ++step) (*s)->Step();
+  const mesh::VertexId tip_centre{10 + 11 * (1 + 3 * 1)};
+  EXPECT_NEAR(-(*s)->state().displacement[mesh::Index(tip_centre)].z(), 0.06057, 1e-4 * 0.06057);
+}
+
+TEST(Simulation, StaticSceneThatIsNotHeldIsRefused) {
+  kerf::v1::Scene spec = *ParseSceneText(*EmbeddedSceneText("bar-cantilever"), "b");
+  spec.clear_displacements();
+  spec.mutable_integration()->set_method(kerf::v1::Integration::STATIC);
+  EXPECT_EQ(StatusMessage(Simulation::Create(*BuildScene(spec, "."))),
+            "the stiffness is singular: the body can move rigidly; hold it with prescribed "
+            "displacements");
+}
+
+}  // namespace
+}  // namespace kerf::sim
