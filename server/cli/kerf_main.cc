@@ -16,7 +16,7 @@ constexpr absl::string_view kUsage =
     "       kerf mesh info FILE [--json]\n"
     "       kerf mesh lattice NX NY NZ [--size X Y Z] --out FILE\n"
     "       kerf mesh convert IN OUT\n"
-    "       kerf sim run SCENE [--steps N] [--vtu-out DIR]\n"
+    "       kerf sim run [SCENE] [--steps N] [--vtu-out DIR]\n"
     "       kerf sim list\n"
     "       kerf static DECK.inp [--json]\n";
 

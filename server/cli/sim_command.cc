@@ -15,7 +15,8 @@ namespace kerf::cli {
 namespace {
 
 constexpr absl::string_view kUsage =
-    "kerf sim run SCENE [--steps N] [--vtu-out DIR] | kerf sim list";
+    "kerf sim run [SCENE] [--steps N] [--vtu-out DIR] | kerf sim list";
+constexpr absl::string_view kDefaultScene = "lattice-tension";
 
 absl::Status WriteFrame(const sim::Simulation& simulation, const std::string& path) {
   mesh::VtuExtraArrays extra;
@@ -36,7 +37,11 @@ absl::StatusOr<std::string> Run(CommandArgs args) {
       args.TakeOption("--vtu-out", 1);
   if (!out_arg.ok()) return out_arg.status();
   absl::StatusOr<std::vector<absl::string_view>> scene_arg = args.TakePositionals(1, kUsage);
-  if (!scene_arg.ok()) return scene_arg.status();
+  if (!scene_arg.ok()) {
+    scene_arg = args.TakePositionals(0, kUsage);
+    if (!scene_arg.ok()) return scene_arg.status();
+    scene_arg->push_back(kDefaultScene);
+  }
   int steps = 1000;
   if (steps_arg->has_value()) {
     absl::StatusOr<int> n = ParseIntArg((**steps_arg)[0], "--steps");

@@ -1,7 +1,7 @@
-// kerf sim run SCENE [--steps N] [--vtu-out DIR]: runs a scene headless (an embedded scene by
-// name, or a text-format scene file) and prints what it did; with --vtu-out, writes about a
-// hundred VTU frames and a .pvd collection that ParaView opens as a time series.
-// kerf sim list: the embedded scenes.
+// kerf sim run [SCENE] [--steps N] [--vtu-out DIR]: runs a scene headless (an embedded scene
+// by name, or a text-format scene file; lattice-tension if none) and prints what it did; with
+// --vtu-out, writes about a hundred VTU frames and a .pvd collection that ParaView opens as a time
+// series. kerf sim list: the embedded scenes.
 #pragma once
 
 #include <string>

@@ -116,7 +116,8 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
               {},
               {},
               spec.integration().method(),
-              spec.integration().time_step()};
+              spec.integration().time_step(),
+              spec.needs()};
   const kerf::v1::Material& m = spec.material();
   scene.material = {m.youngs_modulus(), m.poisson_ratio(), m.density(), m.mass_damping(),
                     m.stiffness_damping()};

@@ -111,6 +111,9 @@ TEST(KerfCli, SimAndStaticErrors) {
   run = Kerf("static /no/deck.inp");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_THAT(run.output, HasSubstr("/no/deck.inp: cannot open file"));
+  run = Kerf("sim run --steps 3");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("scene lattice-tension: 175 vertices, 576 tets"));
   run = Kerf("sim list");
   EXPECT_EQ(run.exit_code, 0);
   EXPECT_THAT(run.output, HasSubstr("lattice-tension: The paper's 4x6x4 lattice"));
