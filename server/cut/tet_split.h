@@ -1,0 +1,49 @@
+// The minimal subdivision of one tet cut all the way through (the paper's section 3.2,
+// cases i and ii), as a pure function of vertex ids.
+//
+// A cut edge becomes two vertices at the same rest position, one on each side of the cut.
+// The pieces on each side are a tet or a triangular prism; a prism is split into three tets
+// by the rule "every quadrilateral face is split by the diagonal through its vertex with the
+// smallest key" (Dompierre et al. 1999), which always gives a valid split. Keys are the
+// vertex id for an original vertex and a key shared by the two vertices of a cut edge, so a
+// neighbour that splits the same face, and the other side of the cut, choose the same
+// diagonals: the result is conforming and keeps volume exactly.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mesh/mesh_ids.h"
+
+namespace kerf::cut {
+
+// One cut edge of the tet being split: corners (local indices 0..3) and the new vertex on
+// each corner's side.
+struct EdgeCut {
+  int corner_a;
+  int corner_b;
+  mesh::VertexId near_a;  // the copy of the cut point that stays with corner a
+  mesh::VertexId near_b;
+};
+
+enum class CompleteCutCase {
+  kOneCornerOff,  // case i: three cut edges around one corner; a tet and a prism (4 tets)
+  kTwoAndTwo,     // case ii: four cut edges separating two corners from two; two prisms (6)
+};
+
+struct TetSplit {
+  CompleteCutCase cut_case;
+  // Replacement tets, in no particular orientation (the caller orients them on rest
+  // positions), and for each the side it is on: true for the side of corner 0.
+  std::vector<mesh::TetVertices> tets;
+  std::vector<bool> on_corner0_side;
+};
+
+// nullopt-like empty result (tets empty) when the cut edges are not those of case i or ii.
+TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts);
+
+// The key of a vertex for the diagonal rule. Original vertices use their id; the two copies
+// of a cut point use the smaller of their ids, offset to sort after every original vertex.
+std::uint64_t DiagonalKey(mesh::VertexId v, const std::vector<EdgeCut>& cuts);
+
+}  // namespace kerf::cut

@@ -1,0 +1,217 @@
+#include "cut/tet_split.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <random>
+
+#include "mesh/boundary_surface.h"
+#include "mesh/connected_components.h"
+#include "mesh/mesh_validation.h"
+#include "mesh/tet_mesh.h"
+
+namespace kerf::cut {
+namespace {
+
+using Eigen::Vector3d;
+using mesh::TetMesh;
+using mesh::VertexId;
+
+// A mesh holding the original corners and, for each cut edge, two vertices at the cut point,
+// created in a random order so that ids (and the diagonal rule) vary between trials.
+struct CutTet {
+  TetMesh mesh;
+  mesh::TetVertices corners;
+  std::vector<EdgeCut> cuts;
+  double volume;
+};
+
+CutTet MakeCutTet(const std::array<Vector3d, 4>& x,
+                  const std::vector<std::pair<int, int>>& cut_edges, std::mt19937& random) {
+  std::uniform_real_distribution<double> fraction(0.1, 0.9);
+  std::vector<std::pair<int, Vector3d>> points;  // (slot, position); slots 0..3 are corners
+  for (int c = 0; c < 4; ++c) points.emplace_back(c, x[c]);
+  for (std::size_t e = 0; e < cut_edges.size(); ++e) {
+    const auto [i, j] = cut_edges[e];
+    const Vector3d p = x[i] + fraction(random) * (x[j] - x[i]);
+    points.emplace_back(4 + 2 * e, p);
+    points.emplace_back(5 + 2 * e, p);
+  }
+  std::shuffle(points.begin(), points.end(), random);
+  CutTet t;
+  std::map<int, VertexId> id_of_slot;
+  for (const auto& [slot, p] : points) id_of_slot[slot] = t.mesh.AddVertex(p);
+  for (int c = 0; c < 4; ++c) t.corners[c] = id_of_slot[c];
+  for (std::size_t e = 0; e < cut_edges.size(); ++e) {
+    t.cuts.push_back(
+        {cut_edges[e].first, cut_edges[e].second, id_of_slot[4 + 2 * e], id_of_slot[5 + 2 * e]});
+  }
+  t.volume = std::abs((x[1] - x[0]).cross(x[2] - x[0]).dot(x[3] - x[0])) / 6;
+  return t;
+}
+
+// Adds the split's tets, each turned to positive orientation on rest positions.
+void AddOriented(const TetSplit& split, TetMesh* mesh) {
+  for (mesh::TetVertices t : split.tets) {
+    const auto p = [&](int i) { return mesh->rest_position(t[i]); };
+    if ((p(1) - p(0)).cross(p(2) - p(0)).dot(p(3) - p(0)) < 0) std::swap(t[2], t[3]);
+    ASSERT_TRUE(mesh->AddTet(t).ok());
+  }
+}
+
+// Checks the properties of ../shared/design/cutting.md that one split tet must keep.
+void ExpectSplitKeepsTheProperties(CutTet& t, const TetSplit& split, std::size_t expected_tets,
+                                   const std::array<Vector3d, 4>& x) {
+  ASSERT_EQ(split.tets.size(), expected_tets);  // 7. minimal
+  AddOriented(split, &t.mesh);
+  double volume = 0;
+  for (const mesh::TetId id : t.mesh.tets()) {
+    const double v = RestVolume(t.mesh, id);
+    EXPECT_GT(v, 0);  // 1. valid
+    volume += v;
+  }
+  EXPECT_NEAR(volume, t.volume, 1e-12 * t.volume);     // 3. volume kept
+  EXPECT_TRUE(mesh::FindMeshDefects(t.mesh).empty());  // 1, 2: valid and conforming
+  const mesh::MeshComponents components = mesh::FindConnectedComponents(t.mesh);
+  EXPECT_EQ(components.count, 2u);  // 5. separated
+  for (std::size_t i = 0; i < split.tets.size(); ++i) {
+    // Every tet on corner 0's side is in corner 0's component.
+    const bool with_corner0 =
+        components.tet_component[i] ==
+        components.tet_component[std::distance(
+            split.on_corner0_side.begin(),
+            std::find(split.on_corner0_side.begin(), split.on_corner0_side.end(), true))];
+    EXPECT_EQ(with_corner0, static_cast<bool>(split.on_corner0_side[i]));
+  }
+  // 6. each original face is tiled exactly once: the boundary triangles in its plane cover
+  // its area exactly.
+  for (const auto& face : mesh::kTetFaces) {
+    const Vector3d &a = x[face[0]], &b = x[face[1]], &c = x[face[2]];
+    const Vector3d normal = (b - a).cross(c - a);
+    double covered = 0;
+    for (const auto& tri : mesh::ExtractBoundarySurface(t.mesh)) {
+      bool in_plane = true;
+      for (const VertexId v : tri.vertices) {
+        in_plane = in_plane && std::abs((t.mesh.rest_position(v) - a).dot(normal)) <
+                                   1e-12 * normal.squaredNorm();
+      }
+      if (!in_plane) continue;
+      const Vector3d &p = t.mesh.rest_position(tri.vertices[0]),
+                     &q = t.mesh.rest_position(tri.vertices[1]),
+                     &r = t.mesh.rest_position(tri.vertices[2]);
+      covered += 0.5 * (q - p).cross(r - p).norm();
+    }
+    EXPECT_NEAR(covered, 0.5 * normal.norm(), 1e-12 * normal.norm());
+  }
+}
+
+std::array<Vector3d, 4> RandomTet(std::mt19937& random) {
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  std::array<Vector3d, 4> x;
+  do {
+    for (Vector3d& p : x) p = Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  } while (std::abs((x[1] - x[0]).cross(x[2] - x[0]).dot(x[3] - x[0])) < 0.05);
+  return x;
+}
+
+TEST(SplitCompletelyCutTet, CaseOneCornerOffInAllFourOrientations) {
+  std::mt19937 random(1);
+  for (int corner = 0; corner < 4; ++corner) {
+    for (int trial = 0; trial < 50; ++trial) {
+      const std::array<Vector3d, 4> x = RandomTet(random);
+      std::vector<std::pair<int, int>> edges;
+      for (int other = 0; other < 4; ++other) {
+        if (other != corner) edges.emplace_back(corner, other);
+      }
+      std::shuffle(edges.begin(), edges.end(), random);
+      CutTet t = MakeCutTet(x, edges, random);
+      const TetSplit split = SplitCompletelyCutTet(t.corners, t.cuts);
+      EXPECT_EQ(split.cut_case, CompleteCutCase::kOneCornerOff);
+      ExpectSplitKeepsTheProperties(t, split, 4, x);
+    }
+  }
+}
+
+TEST(SplitCompletelyCutTet, CaseTwoAndTwoInAllThreeOrientations) {
+  std::mt19937 random(2);
+  for (int partner = 1; partner < 4; ++partner) {
+    for (int trial = 0; trial < 50; ++trial) {
+      const std::array<Vector3d, 4> x = RandomTet(random);
+      std::vector<int> far;
+      for (int c = 1; c < 4; ++c) {
+        if (c != partner) far.push_back(c);
+      }
+      std::vector<std::pair<int, int>> edges = {
+          {0, far[0]}, {0, far[1]}, {partner, far[0]}, {far[1], partner}};
+      std::shuffle(edges.begin(), edges.end(), random);
+      CutTet t = MakeCutTet(x, edges, random);
+      const TetSplit split = SplitCompletelyCutTet(t.corners, t.cuts);
+      EXPECT_EQ(split.cut_case, CompleteCutCase::kTwoAndTwo);
+      ExpectSplitKeepsTheProperties(t, split, 6, x);
+    }
+  }
+}
+
+TEST(SplitCompletelyCutTet, NeighboursSplitTheirSharedFaceTheSameWay) {
+  // Two tets sharing face (0, 1, 2), both cut across it through edges 0-1 and 0-2 (a plane
+  // separating corner 0): tet A = (0, 1, 2, 3) is case i; tet B = (0, 2, 1, 4) too. Their
+  // shared face is split into a triangle and a quad, whose diagonal both must choose alike.
+  std::mt19937 random(3);
+  for (int trial = 0; trial < 100; ++trial) {
+    const std::array<Vector3d, 5> x = {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0),
+                                       Vector3d(0.2, 0.2, 1), Vector3d(0.3, 0.3, -1)};
+    std::uniform_real_distribution<double> fraction(0.1, 0.9);
+    std::vector<int> slots(5 + 6);
+    std::iota(slots.begin(), slots.end(), 0);
+    std::shuffle(slots.begin(), slots.end(), random);
+    // Slots 0..4 corners; 5..10 the two copies of the cuts on edges 0-1, 0-2, 0-3 / 0-4.
+    const double f01 = fraction(random), f02 = fraction(random);
+    std::map<int, Vector3d> position;
+    for (int c = 0; c < 5; ++c) position[c] = x[c];
+    position[5] = position[6] = x[0] + f01 * (x[1] - x[0]);
+    position[7] = position[8] = x[0] + f02 * (x[2] - x[0]);
+    position[9] = x[0] + fraction(random) * (x[3] - x[0]);
+    position[10] = x[0] + fraction(random) * (x[4] - x[0]);
+    TetMesh m;
+    std::map<int, VertexId> id;
+    for (const int slot : slots) id[slot] = m.AddVertex(position[slot]);
+    // Edge 0-3 and edge 0-4 each need their own second copy.
+    const VertexId near3 = m.AddVertex(position[9]), near4 = m.AddVertex(position[10]);
+    const std::vector<EdgeCut> cuts_a = {
+        {0, 1, id[5], id[6]}, {0, 2, id[7], id[8]}, {0, 3, id[9], near3}};
+    const std::vector<EdgeCut> cuts_b = {
+        {0, 2, id[5], id[6]}, {0, 1, id[7], id[8]}, {0, 3, id[10], near4}};
+    ASSERT_EQ(SplitCompletelyCutTet({id[0], id[1], id[2], id[3]}, cuts_a).tets.size(), 4u);
+    TetSplit a = SplitCompletelyCutTet({id[0], id[1], id[2], id[3]}, cuts_a);
+    TetSplit b = SplitCompletelyCutTet({id[0], id[2], id[1], id[4]}, cuts_b);
+    AddOriented(a, &m);
+    AddOriented(b, &m);
+    // Conforming: no defect, and no boundary triangle lies in the shared face's plane z = 0.
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
+    for (const auto& tri : mesh::ExtractBoundarySurface(m)) {
+      bool in_plane = true;
+      for (const VertexId v : tri.vertices) in_plane = in_plane && m.rest_position(v).z() == 0;
+      EXPECT_FALSE(in_plane) << "the shared face was split two ways";
+    }
+    EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+  }
+}
+
+TEST(SplitCompletelyCutTet, IncompleteOrUnknownPatternsAreNotSplit) {
+  const std::vector<EdgeCut> two = {{0, 1, VertexId{4}, VertexId{5}},
+                                    {0, 2, VertexId{6}, VertexId{7}}};
+  EXPECT_TRUE(SplitCompletelyCutTet({VertexId{0}, VertexId{1}, VertexId{2}, VertexId{3}}, two)
+                  .tets.empty());
+  // Three edges that are a path, not a star: not a complete cut.
+  const std::vector<EdgeCut> path = {{0, 1, VertexId{4}, VertexId{5}},
+                                     {1, 2, VertexId{6}, VertexId{7}},
+                                     {2, 3, VertexId{8}, VertexId{9}}};
+  EXPECT_TRUE(SplitCompletelyCutTet({VertexId{0}, VertexId{1}, VertexId{2}, VertexId{3}}, path)
+                  .tets.empty());
+}
+
+}  // namespace
+}  // namespace kerf::cut
