@@ -1,0 +1,44 @@
+// Blade poses as the cutter takes them, and the checks that keep bad input out: a pose that
+// is not finite, goes back in time, has no length, or jumps too far for one step is refused
+// with a message and changes nothing.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "kerf/v1/blade.pb.h"
+
+namespace kerf::cut {
+
+struct BladePose {
+  double time = 0;  // s
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+  Eigen::Vector3d heel = Eigen::Vector3d::Zero();
+};
+
+struct BladeLimits {
+  // The longest blade, m.
+  double max_length = 0.1;
+  // How far the tip or heel may move from one pose to the next, m: farther is a teleport.
+  double max_step = 0.02;
+  // How fast the tip or heel may move, m/s (a surgeon's hand stays well under 1 m/s).
+  double max_speed = 2.0;
+};
+
+// OK, or INVALID_ARGUMENT naming the value. `previous` is null for the first pose of a path.
+absl::Status ValidatePose(const BladePose& pose, const BladePose* previous,
+                          const BladeLimits& limits);
+
+// From the message; INVALID_ARGUMENT if tip or heel is not three numbers.
+absl::StatusOr<BladePose> FromProto(const kerf::v1::BladePose& pose);
+
+// A whole path from its JSON form, every pose validated against the one before.
+// INVALID_ARGUMENT "source: ..." naming the pose for a bad one.
+absl::StatusOr<std::vector<BladePose>> ParseBladePathJson(absl::string_view json,
+                                                          absl::string_view source,
+                                                          const BladeLimits& limits);
+
+}  // namespace kerf::cut

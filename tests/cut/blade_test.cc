@@ -1,0 +1,71 @@
+#include "cut/blade.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "support/status_message.h"
+
+namespace kerf::cut {
+namespace {
+
+using kerf::testing::StatusMessage;
+
+constexpr char kPath[] = R"({"poses": [
+  {"time": 0.0, "tip": [0.0, 0.0, 0.01], "heel": [0.0, 0.0, 0.03]},
+  {"time": 0.01, "tip": [0.002, 0.0, 0.01], "heel": [0.002, 0.0, 0.03]}
+]})";
+
+TEST(ParseBladePathJson, ReadsPoses) {
+  absl::StatusOr<std::vector<BladePose>> path = ParseBladePathJson(kPath, "p.json", {});
+  ASSERT_TRUE(path.ok()) << path.status();
+  ASSERT_EQ(path->size(), 2u);
+  EXPECT_EQ((*path)[1].time, 0.01);
+  EXPECT_EQ((*path)[1].tip, Eigen::Vector3d(0.002, 0, 0.01));
+  EXPECT_EQ((*path)[1].heel, Eigen::Vector3d(0.002, 0, 0.03));
+}
+
+TEST(ParseBladePathJson, RefusesBadPathsNamingThePose) {
+  EXPECT_EQ(StatusMessage(ParseBladePathJson("{\"poses\": []}", "p.json", {})),
+            "p.json: the path has no poses");
+  EXPECT_EQ(StatusMessage(ParseBladePathJson(
+                R"({"poses": [{"time": 0, "tip": [0, 0], "heel": [0, 0, 1]}]})", "p.json", {})),
+            "p.json: pose 0: tip and heel must be [x, y, z]; got 2 and 3 numbers");
+  EXPECT_EQ(
+      StatusMessage(ParseBladePathJson(R"({"poses": [{"time": 0, "knife": 1}]})", "p.json", {})),
+      "p.json: not a blade path ((poses[0]) knife: Cannot find field.)");
+  EXPECT_EQ(StatusMessage(ParseBladePathJson(
+                R"({"poses": [{"time": 0, "tip": [0, 0, 0], "heel": [0, 0, 0.02]},
+                              {"time": 0, "tip": [0, 0, 0], "heel": [0, 0, 0.02]}]})",
+                "p.json", {})),
+            "p.json: pose 1: time 0 s does not follow the previous pose's 0 s");
+}
+
+TEST(ValidatePose, RefusesNonFiniteShortLongJumpingAndFastPoses) {
+  const BladeLimits limits;  // 0.1 m long, 0.02 m per pose, 2 m/s
+  const BladePose first{0, {0, 0, 0}, {0, 0, 0.02}};
+  EXPECT_TRUE(ValidatePose(first, nullptr, limits).ok());
+  BladePose p = first;
+  p.tip.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(StatusMessage(ValidatePose(p, nullptr, limits)),
+            "the pose has a non-finite time, tip or heel");
+  p = first;
+  p.heel = p.tip;
+  EXPECT_EQ(StatusMessage(ValidatePose(p, nullptr, limits)),
+            "the blade is 0 m long; it must be longer than 0 and at most 0.1 m");
+  p = first;
+  p.heel.z() = 0.5;
+  EXPECT_EQ(StatusMessage(ValidatePose(p, nullptr, limits)),
+            "the blade is 0.5 m long; it must be longer than 0 and at most 0.1 m");
+  p = {1, {0.05, 0, 0}, {0.05, 0, 0.02}};
+  EXPECT_EQ(StatusMessage(ValidatePose(p, &first, limits)),
+            "the blade jumps 0.05 m in one pose; at most 0.02 m is accepted");
+  p = {0.001, {0.01, 0, 0}, {0.01, 0, 0.02}};
+  EXPECT_EQ(StatusMessage(ValidatePose(p, &first, limits)),
+            "the blade moves at 10 m/s; at most 2 m/s is accepted");
+  p = {0.01, {0.01, 0, 0}, {0.01, 0, 0.02}};
+  EXPECT_TRUE(ValidatePose(p, &first, limits).ok());
+}
+
+}  // namespace
+}  // namespace kerf::cut
