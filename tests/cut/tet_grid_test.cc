@@ -1,0 +1,111 @@
+#include "cut/tet_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include "mesh/box_lattice.h"
+#include "support/status_message.h"
+
+namespace kerf::cut {
+namespace {
+
+using kerf::testing::StatusMessage;
+using mesh::TetId;
+using mesh::VertexId;
+
+mesh::TetMesh Lattice() {
+  mesh::BoxLatticeSpec spec;
+  spec.cells_x = 8;
+  spec.cells_y = 6;
+  spec.cells_z = 5;
+  spec.size = {0.08, 0.06, 0.05};
+  return *mesh::MakeBoxLattice(spec);
+}
+
+// Every live tet whose current bounding box meets the query box must be a candidate.
+void ExpectCandidatesCoverBruteForce(const mesh::TetMesh& m, const TetGrid& grid,
+                                     std::mt19937& random) {
+  std::uniform_real_distribution<double> coordinate(-0.01, 0.09), size(0, 0.01);
+  for (int query = 0; query < 200; ++query) {
+    const Eigen::Vector3d low(coordinate(random), coordinate(random), coordinate(random));
+    const Eigen::Vector3d high = low + Eigen::Vector3d(size(random), size(random), size(random));
+    const std::vector<TetId> candidates = grid.Candidates(low, high);
+    const std::set<TetId> listed(candidates.begin(), candidates.end());
+    ASSERT_EQ(listed.size(), candidates.size()) << "a tet listed twice";
+    for (const TetId t : m.tets()) {
+      Eigen::Vector3d lo = m.current_position(m.tet(t)[0]), hi = lo;
+      for (const VertexId v : m.tet(t)) {
+        lo = lo.cwiseMin(m.current_position(v));
+        hi = hi.cwiseMax(m.current_position(v));
+      }
+      const bool meets = (lo.array() <= high.array()).all() && (hi.array() >= low.array()).all();
+      if (meets) {
+        ASSERT_TRUE(listed.count(t)) << "tet " << mesh::Index(t) << " missed";
+      }
+    }
+    for (const TetId t : candidates) ASSERT_TRUE(m.IsAlive(t));
+  }
+}
+
+TEST(TetGrid, FindsEveryTetABoxMeetsAsTheMeshDeformsAndChanges) {
+  mesh::TetMesh m = Lattice();
+  TetGrid grid = *TetGrid::Build(m, 0.01, 0.002);
+  std::mt19937 random(4);
+  ExpectCandidatesCoverBruteForce(m, grid, random);
+  // Deform in small steps (some within the margin, some beyond), refreshing each time.
+  std::normal_distribution<double> jitter(0, 0.0015);
+  for (int step = 0; step < 20; ++step) {
+    for (const VertexId v : m.vertices()) {
+      m.set_current_position(
+          v,
+          m.current_position(v) + Eigen::Vector3d(jitter(random), jitter(random), jitter(random)));
+    }
+    ASSERT_TRUE(grid.Refresh().ok());
+    ExpectCandidatesCoverBruteForce(m, grid, random);
+  }
+  // Topology changes: remove some tets, add a vertex and tets on it.
+  for (std::uint32_t t = 0; t < 30; ++t) ASSERT_TRUE(m.RemoveTet(TetId{t * 7}).ok());
+  const VertexId extra = m.AddVertex({0.03, 0.03, 0.03});
+  const mesh::TetVertices base = m.tet(TetId{1});
+  ASSERT_TRUE(m.AddTet({base[0], base[1], base[2], extra}).ok());
+  ASSERT_TRUE(grid.Refresh().ok());
+  EXPECT_EQ(grid.registered_tets(), m.tet_count());
+  ExpectCandidatesCoverBruteForce(m, grid, random);
+}
+
+TEST(TetGrid, RefreshOnlyTouchesTetsAroundVerticesThatMovedBeyondTheMargin) {
+  mesh::TetMesh m = Lattice();
+  TetGrid grid = *TetGrid::Build(m, 0.01, 0.002);
+  ASSERT_TRUE(grid.Refresh().ok());
+  EXPECT_EQ(grid.last_refresh_count(), 0u);
+  // Move one vertex within the margin: nothing; beyond it: only the tets around it.
+  const VertexId v{100};
+  m.set_current_position(v, m.current_position(v) + Eigen::Vector3d(0.001, 0, 0));
+  ASSERT_TRUE(grid.Refresh().ok());
+  EXPECT_EQ(grid.last_refresh_count(), 0u);
+  m.set_current_position(v, m.current_position(v) + Eigen::Vector3d(0.002, 0, 0));
+  ASSERT_TRUE(grid.Refresh().ok());
+  EXPECT_EQ(grid.last_refresh_count(), m.TetsAround(v).size());
+}
+
+TEST(TetGrid, QueriesListFewTetsOfALargeMesh) {
+  const mesh::TetMesh m = Lattice();  // 1440 tets
+  const TetGrid grid = *TetGrid::Build(m, 0.01, 0.001);
+  const std::vector<TetId> near = grid.Candidates({0.041, 0.031, 0.021}, {0.042, 0.032, 0.022});
+  EXPECT_GT(near.size(), 0u);
+  EXPECT_LT(near.size(), 200u);
+}
+
+TEST(TetGrid, RefusesBadParameters) {
+  const mesh::TetMesh m = Lattice();
+  EXPECT_EQ(StatusMessage(TetGrid::Build(m, 0, 0.001)),
+            "cell_size must be positive and finite (m), got 0");
+  EXPECT_EQ(StatusMessage(TetGrid::Build(m, 0.01, -1)),
+            "margin must be non-negative and finite (m), got -1");
+}
+
+}  // namespace
+}  // namespace kerf::cut
