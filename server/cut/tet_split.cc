@@ -1,8 +1,12 @@
 #include "cut/tet_split.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <utility>
 
 namespace kerf::cut {
@@ -11,36 +15,94 @@ namespace {
 using mesh::Index;
 using mesh::VertexId;
 
+// Which vertex of a quad (given in cyclic order) its splitting diagonal passes through.
+using DiagonalChooser = std::function<VertexId(const std::array<VertexId, 4>&)>;
+
+// The rule every face shared with a neighbour follows: through the smallest-key vertex.
+DiagonalChooser KeyRule(const std::vector<EdgeCut>& cuts) {
+  return [&cuts](const std::array<VertexId, 4>& q) {
+    return *std::min_element(q.begin(), q.end(), [&](VertexId x, VertexId y) {
+      return DiagonalKey(x, cuts) < DiagonalKey(y, cuts);
+    });
+  };
+}
+
+// True if the quad's chosen diagonal passes through v.
+bool DiagonalTouches(const std::array<VertexId, 4>& q, VertexId v, const DiagonalChooser& choose) {
+  const VertexId chosen = choose(q);
+  const int at = static_cast<int>(std::find(q.begin(), q.end(), chosen) - q.begin());
+  return v == q[at] || v == q[(at + 2) % 4];
+}
+
 // The three tets of the prism with bottom triangle (A, B, C) and top (D, E, F) above it
-// (A-D, B-E, C-F are its vertical edges), each quad split through its smallest-key vertex.
-void SplitPrism(std::array<VertexId, 3> bottom, std::array<VertexId, 3> top,
-                const std::vector<EdgeCut>& cuts, std::vector<mesh::TetVertices>* out) {
-  auto key = [&](VertexId v) { return DiagonalKey(v, cuts); };
-  // Relabel so that the smallest-key vertex is A.
-  int smallest = 0;
-  for (int i = 1; i < 6; ++i) {
-    const VertexId candidate = i < 3 ? bottom[i] : top[i - 3];
-    const VertexId current = smallest < 3 ? bottom[smallest] : top[smallest - 3];
-    if (key(candidate) < key(current)) smallest = i;
-  }
-  if (smallest >= 3) {
+// (A-D, B-E, C-F are its vertical edges), its quads split as `choose` says. A prism can be
+// split so unless its three diagonals turn the same way around it (the two cyclic choices):
+// then some vertex carries two diagonals; it is A below, the tet ADEF comes off, and the
+// pyramid A-BCFE is left. Returns false for a cyclic choice.
+bool SplitPrism(std::array<VertexId, 3> bottom, std::array<VertexId, 3> top,
+                const DiagonalChooser& choose, std::vector<mesh::TetVertices>* out) {
+  for (int flip = 0; flip < 2; ++flip) {
+    for (int turn = 0; turn < 3; ++turn) {
+      const VertexId a = bottom[0], b = bottom[1], c = bottom[2];
+      const VertexId d = top[0], e = top[1], f = top[2];
+      if (DiagonalTouches({a, b, e, d}, a, choose) && DiagonalTouches({c, a, d, f}, a, choose)) {
+        out->push_back({a, d, e, f});
+        if (DiagonalTouches({b, c, f, e}, b, choose)) {
+          out->push_back({a, b, c, f});
+          out->push_back({a, b, f, e});
+        } else {
+          out->push_back({a, b, c, e});
+          out->push_back({a, c, f, e});
+        }
+        return true;
+      }
+      std::rotate(bottom.begin(), bottom.begin() + 1, bottom.end());
+      std::rotate(top.begin(), top.begin() + 1, top.end());
+    }
     std::swap(bottom, top);
-    smallest -= 3;
   }
-  std::rotate(bottom.begin(), bottom.begin() + smallest, bottom.end());
-  std::rotate(top.begin(), top.begin() + smallest, top.end());
-  const auto [a, b, c] = bottom;
-  const auto [d, e, f] = top;
-  // Quads ABED and CADF are split through A (diagonals AE, AF): the tet ADEF comes off and
-  // leaves the pyramid A-BCFE, whose base is split through its own smallest-key vertex.
-  out->push_back({a, d, e, f});
-  if (std::min(key(b), key(f)) < std::min(key(c), key(e))) {
-    out->push_back({a, b, c, f});
-    out->push_back({a, b, f, e});
-  } else {
-    out->push_back({a, b, c, e});
-    out->push_back({a, c, f, e});
+  return false;
+}
+
+void SplitPrism(const std::array<VertexId, 3>& bottom, const std::array<VertexId, 3>& top,
+                const std::vector<EdgeCut>& cuts, std::vector<mesh::TetVertices>* out) {
+  [[maybe_unused]] const bool split = SplitPrism(bottom, top, KeyRule(cuts), out);
+  assert(split);  // the key rule is never cyclic
+}
+
+// The two tets of the pyramid with this apex over the quad q (in cyclic order).
+void SplitPyramid(VertexId apex, const std::array<VertexId, 4>& q, const DiagonalChooser& choose,
+                  std::vector<mesh::TetVertices>* out) {
+  const int at = static_cast<int>(std::find(q.begin(), q.end(), choose(q)) - q.begin());
+  const VertexId p0 = q[at], p1 = q[(at + 1) % 4], p2 = q[(at + 2) % 4], p3 = q[(at + 3) % 4];
+  out->push_back({apex, p0, p1, p2});
+  out->push_back({apex, p0, p2, p3});
+}
+
+double SignedVolume(const mesh::TetVertices& t,
+                    const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  const Eigen::Vector3d a = rest(t[0]);
+  return (rest(t[1]) - a).cross(rest(t[2]) - a).dot(rest(t[3]) - a) / 6;
+}
+
+// The four tets around the axis (p, q) of an octahedron whose other vertices form the cycle
+// e0 e1 e2 e3, if they all have the same orientation (the axis lies inside), with the smallest
+// absolute volume among them; else an empty list.
+std::pair<std::vector<mesh::TetVertices>, double> OctahedronAround(
+    VertexId p, VertexId q, const std::array<VertexId, 4>& e,
+    const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  std::vector<mesh::TetVertices> tets;
+  double smallest = std::numeric_limits<double>::infinity();
+  int positive = 0;
+  for (int i = 0; i < 4; ++i) {
+    tets.push_back({p, q, e[i], e[(i + 1) % 4]});
+    const double v = SignedVolume(tets.back(), rest);
+    positive += v > 0;
+    smallest = std::min(smallest, std::abs(v));
+    if (v == 0) return {{}, 0};
   }
+  if (positive != 0 && positive != 4) return {{}, 0};
+  return {tets, smallest};
 }
 
 // The cut of edge (i, j) among `cuts`, or nullptr.
@@ -69,6 +131,102 @@ void Append(std::vector<mesh::TetVertices> tets, bool corner0_side, TetSplit* sp
 
 }  // namespace
 
+TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                         const std::array<FacePoint, 2>& face_points,
+                         const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  TetSplit split;
+  // The face point on the face opposite corner k.
+  auto face_point = [&](int opposite) -> std::optional<VertexId> {
+    for (const FacePoint& f : face_points) {
+      if (f.face == opposite) return f.vertex;
+    }
+    return std::nullopt;
+  };
+  if (cuts.size() == 1) {
+    // Case iii: edge (a, b) cut; the tip path crossed faces abc and abd.
+    const int a = cuts[0].corner_a, b = cuts[0].corner_b;
+    int c = -1, d = -1;
+    for (int k = 0; k < 4; ++k) {
+      if (k != a && k != b) (c < 0 ? c : d) = k;
+    }
+    const std::optional<VertexId> f_c = face_point(d);  // on face abc
+    const std::optional<VertexId> f_d = face_point(c);  // on face abd
+    if (!f_c || !f_d) return split;
+    split.tets.push_back({corners[a], cuts[0].near_a, *f_c, *f_d});
+    split.tets.push_back({corners[b], cuts[0].near_b, *f_c, *f_d});
+    // The rest is an octahedron with opposite pairs (a, b), (c, f_d), (d, f_c); split it
+    // around whichever inner axis gives the better tets.
+    auto [around_c, quality_c] =
+        OctahedronAround(corners[c], *f_d, {corners[a], *f_c, corners[b], corners[d]}, rest);
+    auto [around_d, quality_d] =
+        OctahedronAround(corners[d], *f_c, {corners[a], *f_d, corners[b], corners[c]}, rest);
+    const std::vector<mesh::TetVertices>& best = quality_c >= quality_d ? around_c : around_d;
+    if (best.empty()) return TetSplit{};
+    split.tets.insert(split.tets.end(), best.begin(), best.end());
+    split.cut_case = CutCase::kCrackOneEdge;
+  } else if (cuts.size() == 2) {
+    // Case iv: edges (a, b) and (a, c) cut; the tip path crossed faces abd and acd.
+    std::array<int, 4> count{};
+    for (const EdgeCut& cut : cuts) {
+      ++count[cut.corner_a];
+      ++count[cut.corner_b];
+    }
+    const auto shared = std::find(count.begin(), count.end(), 2);
+    if (shared == count.end()) return split;
+    const int a = static_cast<int>(shared - count.begin());
+    const int b = cuts[0].corner_a == a ? cuts[0].corner_b : cuts[0].corner_a;
+    const int c = cuts[1].corner_a == a ? cuts[1].corner_b : cuts[1].corner_a;
+    const int d = 6 - a - b - c;
+    const std::optional<VertexId> f_b = face_point(c);  // on face abd
+    const std::optional<VertexId> f_c = face_point(b);  // on face acd
+    if (!f_b || !f_c) return split;
+    const VertexId ab_a = Near(cuts, a, b), ab_b = Near(cuts, b, a);
+    const VertexId ac_a = Near(cuts, a, c), ac_c = Near(cuts, c, a);
+    // Corner a's side is the pyramid over the crack quad; the other side is the tet at edge
+    // ad, a prism along bc and a pyramid at d. Only the quad on face abc is shared with a
+    // neighbour (key rule); the crack quad and the quad between prism and pyramid are inside
+    // this tet, so their diagonals are chosen for the best valid tets.
+    const std::array<VertexId, 4> crack = {*f_b, ab_a, ac_a, *f_c};
+    const std::array<VertexId, 4> inner = {corners[b], corners[c], *f_c, *f_b};
+    const double volume = std::abs(SignedVolume(corners, rest));
+    double best_quality = 0;
+    for (int choice = 0; choice < 4; ++choice) {
+      const VertexId crack_through = choice & 1 ? *f_b : ab_a;
+      const VertexId inner_through = choice & 2 ? corners[b] : corners[c];
+      const DiagonalChooser key_rule = KeyRule(cuts);
+      const DiagonalChooser choose = [&](const std::array<VertexId, 4>& q) {
+        // The crack quad appears with copies from either side; compare by cut point.
+        const auto same_quad = [&](const std::array<VertexId, 4>& r) {
+          return std::is_permutation(q.begin(), q.end(), r.begin());
+        };
+        const std::array<VertexId, 4> crack_far = {*f_b, ab_b, ac_c, *f_c};
+        if (same_quad(crack)) return crack_through;
+        if (same_quad(crack_far)) return crack_through == ab_a ? ab_b : crack_through;
+        if (same_quad(inner)) return inner_through;
+        return key_rule(q);
+      };
+      std::vector<mesh::TetVertices> tets;
+      SplitPyramid(corners[a], crack, choose, &tets);
+      tets.push_back({corners[a], corners[d], *f_b, *f_c});
+      if (!SplitPrism({corners[b], ab_b, *f_b}, {corners[c], ac_c, *f_c}, choose, &tets)) continue;
+      SplitPyramid(corners[d], inner, choose, &tets);
+      double total = 0, smallest = std::numeric_limits<double>::infinity();
+      for (const mesh::TetVertices& t : tets) {
+        const double v = std::abs(SignedVolume(t, rest));
+        total += v;
+        smallest = std::min(smallest, v);
+      }
+      // Overlapping (inverted) tets make the absolute volumes add up to more than the tet.
+      if (std::abs(total - volume) > 1e-10 * volume || !(smallest > best_quality)) continue;
+      best_quality = smallest;
+      split.tets = std::move(tets);
+    }
+    if (split.tets.empty()) return TetSplit{};
+    split.cut_case = CutCase::kCrackTwoEdges;
+  }
+  return split;
+}
+
 std::uint64_t DiagonalKey(VertexId v, const std::vector<EdgeCut>& cuts) {
   for (const EdgeCut& cut : cuts) {
     if (v == cut.near_a || v == cut.near_b) {
@@ -92,7 +250,7 @@ TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vect
     if (lone == cut_count.end()) return split;
     const int v = static_cast<int>(lone - cut_count.begin());
     const int x = (v + 1) % 4, y = (v + 2) % 4, z = (v + 3) % 4;
-    split.cut_case = CompleteCutCase::kOneCornerOff;
+    split.cut_case = CutCase::kOneCornerOff;
     Append({{corners[v], Near(cuts, v, x), Near(cuts, v, y), Near(cuts, v, z)}}, v == 0, &split);
     std::vector<mesh::TetVertices> prism;
     SplitPrism({Near(cuts, x, v), Near(cuts, y, v), Near(cuts, z, v)},
@@ -112,7 +270,7 @@ TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vect
       (q < 0 ? q : r) = i;
     }
     if (FindCut(cuts, q, r) != nullptr) return split;
-    split.cut_case = CompleteCutCase::kTwoAndTwo;
+    split.cut_case = CutCase::kTwoAndTwo;
     std::vector<mesh::TetVertices> near_side, far_side;
     SplitPrism({corners[0], Near(cuts, 0, q), Near(cuts, 0, r)},
                {corners[p], Near(cuts, p, q), Near(cuts, p, r)}, cuts, &near_side);

@@ -10,8 +10,12 @@
 // diagonals: the result is conforming and keeps volume exactly.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "mesh/mesh_ids.h"
 
@@ -26,21 +30,40 @@ struct EdgeCut {
   mesh::VertexId near_b;
 };
 
-enum class CompleteCutCase {
+enum class CutCase {
+  kNone,
   kOneCornerOff,  // case i: three cut edges around one corner; a tet and a prism (4 tets)
   kTwoAndTwo,     // case ii: four cut edges separating two corners from two; two prisms (6)
+  kCrackOneEdge,  // case iii: one cut edge, the crack ending inside (6 tets)
+  kCrackTwoEdges, // case iv: two cut edges sharing a corner, the crack ending inside (8 tets)
+};
+
+// Where the blade's tip path crossed a face: one vertex, the base of the crack.
+struct FacePoint {
+  int face;  // the face opposite this local corner
+  mesh::VertexId vertex;
 };
 
 struct TetSplit {
-  CompleteCutCase cut_case;
+  CutCase cut_case = CutCase::kNone;
   // Replacement tets, in no particular orientation (the caller orients them on rest
-  // positions), and for each the side it is on: true for the side of corner 0.
+  // positions), and for each the side it is on: true for the side of corner 0 (complete
+  // cuts only).
   std::vector<mesh::TetVertices> tets;
   std::vector<bool> on_corner0_side;
 };
 
-// nullopt-like empty result (tets empty) when the cut edges are not those of case i or ii.
+// An empty result (kNone) when the cut edges are not those of case i or ii.
 TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts);
+
+// A tet whose crack ends inside it: the tip path crossed two faces and the swept surface cut
+// the edges between them (cases iii and iv). The crack's edge points split as in a complete
+// cut; the face points stay single. The choice of one inner diagonal (case iii) depends on
+// geometry, so the rest positions are needed: `rest(v)` gives them. An empty result (kNone)
+// for any other pattern, or when no valid split of this kind exists for the geometry.
+TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                         const std::array<FacePoint, 2>& face_points,
+                         const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
 // The key of a vertex for the diagonal rule. Original vertices use their id; the two copies
 // of a cut point use the smaller of their ids, offset to sort after every original vertex.

@@ -129,7 +129,7 @@ TEST(SplitCompletelyCutTet, CaseOneCornerOffInAllFourOrientations) {
       std::shuffle(edges.begin(), edges.end(), random);
       CutTet t = MakeCutTet(x, edges, random);
       const TetSplit split = SplitCompletelyCutTet(t.corners, t.cuts);
-      EXPECT_EQ(split.cut_case, CompleteCutCase::kOneCornerOff);
+      EXPECT_EQ(split.cut_case, CutCase::kOneCornerOff);
       ExpectSplitKeepsTheProperties(t, split, 4, x);
     }
   }
@@ -149,7 +149,7 @@ TEST(SplitCompletelyCutTet, CaseTwoAndTwoInAllThreeOrientations) {
       std::shuffle(edges.begin(), edges.end(), random);
       CutTet t = MakeCutTet(x, edges, random);
       const TetSplit split = SplitCompletelyCutTet(t.corners, t.cuts);
-      EXPECT_EQ(split.cut_case, CompleteCutCase::kTwoAndTwo);
+      EXPECT_EQ(split.cut_case, CutCase::kTwoAndTwo);
       ExpectSplitKeepsTheProperties(t, split, 6, x);
     }
   }
@@ -197,6 +197,140 @@ TEST(SplitCompletelyCutTet, NeighboursSplitTheirSharedFaceTheSameWay) {
       EXPECT_FALSE(in_plane) << "the shared face was split two ways";
     }
     EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+  }
+}
+
+// Properties of a split whose crack ends inside the tet: valid, volume kept, one piece, each
+// original face tiled once, and the crack open: no tet holds both copies of a cut point, and
+// the crack's two sides are boundary of equal area.
+void ExpectCrackedSplitKeepsTheProperties(CutTet& t, const TetSplit& split,
+                                          std::size_t expected_tets,
+                                          const std::array<Vector3d, 4>& x) {
+  ASSERT_EQ(split.tets.size(), expected_tets);
+  AddOriented(split, &t.mesh);
+  double volume = 0;
+  for (const mesh::TetId id : t.mesh.tets()) {
+    const double v = RestVolume(t.mesh, id);
+    EXPECT_GT(v, 0);
+    volume += v;
+    for (const EdgeCut& cut : t.cuts) {
+      EXPECT_FALSE(mesh::TetHasVertex(t.mesh.tet(id), cut.near_a) &&
+                   mesh::TetHasVertex(t.mesh.tet(id), cut.near_b));
+    }
+  }
+  EXPECT_NEAR(volume, t.volume, 1e-12 * t.volume);
+  EXPECT_TRUE(mesh::FindMeshDefects(t.mesh).empty());
+  EXPECT_EQ(mesh::FindConnectedComponents(t.mesh).count, 1u);
+  // The crack's sides: the copies near the corner every cut edge shares, and the others.
+  const int shared = t.cuts.size() == 1 || t.cuts[0].corner_a == t.cuts[1].corner_a ||
+                             t.cuts[0].corner_a == t.cuts[1].corner_b
+                         ? t.cuts[0].corner_a
+                         : t.cuts[0].corner_b;
+  double on_faces = 0, crack_shared_side = 0, crack_other_side = 0, surface = 0;
+  for (const auto& face : mesh::kTetFaces) {
+    surface += 0.5 * (x[face[1]] - x[face[0]]).cross(x[face[2]] - x[face[0]]).norm();
+  }
+  for (const auto& tri : mesh::ExtractBoundarySurface(t.mesh)) {
+    const Vector3d &p = t.mesh.rest_position(tri.vertices[0]),
+                   &q = t.mesh.rest_position(tri.vertices[1]),
+                   &r = t.mesh.rest_position(tri.vertices[2]);
+    const double area = 0.5 * (q - p).cross(r - p).norm();
+    bool on_a_face = false;
+    for (const auto& face : mesh::kTetFaces) {
+      const Vector3d normal = (x[face[1]] - x[face[0]]).cross(x[face[2]] - x[face[0]]);
+      bool in_plane = true;
+      for (const Vector3d* point : {&p, &q, &r}) {
+        in_plane =
+            in_plane && std::abs((*point - x[face[0]]).dot(normal)) < 1e-12 * normal.squaredNorm();
+      }
+      on_a_face = on_a_face || in_plane;
+    }
+    if (on_a_face) {
+      on_faces += area;
+      continue;
+    }
+    bool shared_side = false;
+    for (const EdgeCut& cut : t.cuts) {
+      const VertexId near_shared = cut.corner_a == shared ? cut.near_a : cut.near_b;
+      for (const VertexId v : tri.vertices) shared_side = shared_side || v == near_shared;
+    }
+    (shared_side ? crack_shared_side : crack_other_side) += area;
+  }
+  EXPECT_NEAR(on_faces, surface, 1e-12 * surface);
+  EXPECT_GT(crack_shared_side, 1e-6 * surface);
+  EXPECT_NEAR(crack_shared_side, crack_other_side, 1e-12 * surface);
+}
+
+// A point inside triangle (a, b, c), away from its edges.
+Vector3d InsideTriangle(const Vector3d& a, const Vector3d& b, const Vector3d& c,
+                        std::mt19937& random) {
+  std::uniform_real_distribution<double> weight(0.15, 1.0);
+  const double u = weight(random), v = weight(random), w = weight(random);
+  return (u * a + v * b + w * c) / (u + v + w);
+}
+
+TEST(SplitCrackedTet, CaseOneEdgeInAllSixOrientations) {
+  std::mt19937 random(5);
+  for (const auto& [a, b] : mesh::kTetEdges) {
+    for (int trial = 0; trial < 50; ++trial) {
+      const std::array<Vector3d, 4> x = RandomTet(random);
+      CutTet t = MakeCutTet(x, {{a, b}}, random);
+      int c = -1, d = -1;
+      for (int k = 0; k < 4; ++k) {
+        if (k != a && k != b) (c < 0 ? c : d) = k;
+      }
+      const VertexId on_abc = t.mesh.AddVertex(InsideTriangle(x[a], x[b], x[c], random));
+      const VertexId on_abd = t.mesh.AddVertex(InsideTriangle(x[a], x[b], x[d], random));
+      const TetSplit split =
+          SplitCrackedTet(t.corners, t.cuts, {FacePoint{d, on_abc}, FacePoint{c, on_abd}},
+                          [&](VertexId v) { return t.mesh.rest_position(v); });
+      EXPECT_EQ(split.cut_case, CutCase::kCrackOneEdge);
+      ExpectCrackedSplitKeepsTheProperties(t, split, 6, x);
+    }
+  }
+}
+
+TEST(SplitCrackedTet, CaseTwoEdgesInAllTwelveOrientations) {
+  std::mt19937 random(6);
+  std::uniform_real_distribution<double> fraction(0.2, 0.8);
+  for (int a = 0; a < 4; ++a) {
+    for (int b = 0; b < 4; ++b) {
+      for (int c = b + 1; c < 4; ++c) {
+        if (b == a || c == a) continue;
+        const int d = 6 - a - b - c;
+        for (int trial = 0; trial < 30; ++trial) {
+          const std::array<Vector3d, 4> x = RandomTet(random);
+          std::vector<std::pair<int, int>> edges = {{a, b}, {c, a}};
+          std::shuffle(edges.begin(), edges.end(), random);
+          CutTet t = MakeCutTet(x, edges, random);
+          // A blade plane cuts ab, ac and (beyond the crack's end) ad; the tip path runs near
+          // that plane across faces abd and acd.
+          const auto cut_point = [&](int i, int j) {
+            for (const EdgeCut& cut : t.cuts) {
+              if ((cut.corner_a == i && cut.corner_b == j) ||
+                  (cut.corner_a == j && cut.corner_b == i)) {
+                return t.mesh.rest_position(cut.near_a);
+              }
+            }
+            return Vector3d(x[i] + fraction(random) * (x[j] - x[i]));
+          };
+          const Vector3d ab = cut_point(a, b), ac = cut_point(a, c), ad = cut_point(a, d);
+          // Each face point is moved off the plane within its face, so that the crack is not
+          // flat, as a swept (ruled) surface is not.
+          const Vector3d on_abd_point = 0.7 * (ab + fraction(random) * (ad - ab)) +
+                                        0.3 * InsideTriangle(x[a], x[b], x[d], random);
+          const Vector3d on_acd_point = 0.7 * (ac + fraction(random) * (ad - ac)) +
+                                        0.3 * InsideTriangle(x[a], x[c], x[d], random);
+          const VertexId on_abd = t.mesh.AddVertex(on_abd_point);
+          const VertexId on_acd = t.mesh.AddVertex(on_acd_point);
+          const TetSplit split =
+              SplitCrackedTet(t.corners, t.cuts, {FacePoint{c, on_abd}, FacePoint{b, on_acd}},
+                              [&](VertexId v) { return t.mesh.rest_position(v); });
+          EXPECT_EQ(split.cut_case, CutCase::kCrackTwoEdges);
+          ExpectCrackedSplitKeepsTheProperties(t, split, 8, x);
+        }
+      }
+    }
   }
 }
 
