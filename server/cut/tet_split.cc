@@ -79,6 +79,25 @@ void SplitPyramid(VertexId apex, const std::array<VertexId, 4>& q, const Diagona
   out->push_back({apex, p0, p2, p3});
 }
 
+using Triangle = std::array<VertexId, 3>;
+
+// The two triangles of a quad (in cyclic order) split as `choose` says.
+std::array<Triangle, 2> QuadTriangles(const std::array<VertexId, 4>& q,
+                                      const DiagonalChooser& choose) {
+  const int at = static_cast<int>(std::find(q.begin(), q.end(), choose(q)) - q.begin());
+  return {{{q[at], q[(at + 1) % 4], q[(at + 2) % 4]}, {q[at], q[(at + 2) % 4], q[(at + 3) % 4]}}};
+}
+
+// The tets joining `apex` to each boundary triangle of a region that does not contain it:
+// a valid split exactly when the region is star-shaped from the apex.
+std::vector<mesh::TetVertices> Cone(VertexId apex, const std::vector<Triangle>& boundary) {
+  std::vector<mesh::TetVertices> tets;
+  for (const Triangle& t : boundary) {
+    if (std::find(t.begin(), t.end(), apex) == t.end()) tets.push_back({apex, t[0], t[1], t[2]});
+  }
+  return tets;
+}
+
 double SignedVolume(const mesh::TetVertices& t,
                     const std::function<Eigen::Vector3d(VertexId)>& rest) {
   const Eigen::Vector3d a = rest(t[0]);
@@ -223,6 +242,81 @@ TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<Edg
     }
     if (split.tets.empty()) return TetSplit{};
     split.cut_case = CutCase::kCrackTwoEdges;
+  } else if (cuts.size() == 3) {
+    // Case v: the cut edges are a path a-b-c-d; the tip path crossed faces abd and acd.
+    std::array<int, 4> count{};
+    for (const EdgeCut& cut : cuts) {
+      ++count[cut.corner_a];
+      ++count[cut.corner_b];
+    }
+    int a = -1, d = -1;
+    for (int k = 0; k < 4; ++k) {
+      if (count[k] == 1) (a < 0 ? a : d) = k;
+      if (count[k] == 3 || count[k] == 0) return split;  // three edges around one corner
+    }
+    int b = -1;
+    for (const EdgeCut& cut : cuts) {
+      if (cut.corner_a == a) b = cut.corner_b;
+      if (cut.corner_b == a) b = cut.corner_a;
+    }
+    const int c = 6 - a - b - d;
+    if (b < 0 || FindCut(cuts, b, c) == nullptr || FindCut(cuts, c, d) == nullptr) return split;
+    const std::optional<VertexId> f_p = face_point(c);  // on face abd
+    const std::optional<VertexId> f_q = face_point(b);  // on face acd
+    if (!f_p || !f_q) return split;
+    const VertexId ab_a = Near(cuts, a, b), ab_b = Near(cuts, b, a);
+    const VertexId bc_b = Near(cuts, b, c), bc_c = Near(cuts, c, b);
+    const VertexId cd_c = Near(cuts, c, d), cd_d = Near(cuts, d, c);
+    const VertexId va = corners[a], vb = corners[b], vc = corners[c], vd = corners[d];
+    // The crack separates {a, c} from {b, d}; the two regions meet at the tet (a, d, fP, fQ)
+    // along edge ad, where the crack ends. Each region is split as a cone from one of its
+    // vertices, and the crack pentagon as a fan that both sides share.
+    const DiagonalChooser key_rule = KeyRule(cuts);
+    const std::array<Triangle, 2> on_abc = QuadTriangles({va, ab_a, bc_c, vc}, key_rule);
+    const std::array<Triangle, 2> on_bcd = QuadTriangles({vb, bc_b, cd_d, vd}, key_rule);
+    const std::array<VertexId, 5> crack_near_c = {*f_p, ab_a, bc_c, cd_c, *f_q};
+    const std::array<VertexId, 5> crack_near_b = {*f_p, ab_b, bc_b, cd_d, *f_q};
+    const double volume = std::abs(SignedVolume(corners, rest));
+    double best_quality = 0;
+    std::size_t best_count = std::numeric_limits<std::size_t>::max();
+    for (int fan = 0; fan < 5; ++fan) {
+      std::vector<Triangle> near_c = {on_abc[0],        on_abc[1],      {vc, bc_c, cd_c},
+                                      {vc, cd_c, *f_q}, {va, vc, *f_q}, {va, ab_a, *f_p},
+                                      {va, *f_p, *f_q}};
+      std::vector<Triangle> near_b = {{vb, ab_b, bc_b}, on_bcd[0],        on_bcd[1],
+                                      {cd_d, vd, *f_q}, {ab_b, vb, *f_p}, {vb, vd, *f_p},
+                                      {vd, *f_p, *f_q}};
+      for (int k = 1; k < 4; ++k) {
+        near_c.push_back(
+            {crack_near_c[fan], crack_near_c[(fan + k) % 5], crack_near_c[(fan + k + 1) % 5]});
+        near_b.push_back(
+            {crack_near_b[fan], crack_near_b[(fan + k) % 5], crack_near_b[(fan + k + 1) % 5]});
+      }
+      const std::array<VertexId, 7> apexes_c = {va, vc, ab_a, bc_c, cd_c, *f_p, *f_q};
+      const std::array<VertexId, 7> apexes_b = {vb, vd, ab_b, bc_b, cd_d, *f_p, *f_q};
+      for (const VertexId apex_c : apexes_c) {
+        for (const VertexId apex_b : apexes_b) {
+          std::vector<mesh::TetVertices> tets = Cone(apex_c, near_c);
+          const std::vector<mesh::TetVertices> far = Cone(apex_b, near_b);
+          tets.insert(tets.end(), far.begin(), far.end());
+          tets.push_back({va, vd, *f_p, *f_q});
+          if (tets.size() > best_count) continue;
+          double total = 0, smallest = std::numeric_limits<double>::infinity();
+          for (const mesh::TetVertices& t : tets) {
+            const double v = std::abs(SignedVolume(t, rest));
+            total += v;
+            smallest = std::min(smallest, v);
+          }
+          if (std::abs(total - volume) > 1e-10 * volume || !(smallest > 1e-12 * volume)) continue;
+          if (tets.size() == best_count && !(smallest > best_quality)) continue;
+          best_count = tets.size();
+          best_quality = smallest;
+          split.tets = std::move(tets);
+        }
+      }
+    }
+    if (split.tets.empty()) return TetSplit{};
+    split.cut_case = CutCase::kCrackThreeEdges;
   }
   return split;
 }

@@ -10,12 +10,11 @@
 // diagonals: the result is conforming and keeps volume exactly.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "mesh/mesh_ids.h"
 
@@ -32,10 +31,11 @@ struct EdgeCut {
 
 enum class CutCase {
   kNone,
-  kOneCornerOff,  // case i: three cut edges around one corner; a tet and a prism (4 tets)
-  kTwoAndTwo,     // case ii: four cut edges separating two corners from two; two prisms (6)
-  kCrackOneEdge,  // case iii: one cut edge, the crack ending inside (6 tets)
-  kCrackTwoEdges, // case iv: two cut edges sharing a corner, the crack ending inside (8 tets)
+  kOneCornerOff,     // case i: three cut edges around one corner; a tet and a prism (4 tets)
+  kTwoAndTwo,        // case ii: four cut edges separating two corners from two; two prisms (6)
+  kCrackOneEdge,     // case iii: one cut edge, the crack ending inside (6 tets)
+  kCrackTwoEdges,    // case iv: two cut edges sharing a corner, the crack ending inside (8 tets)
+  kCrackThreeEdges,  // case v: three cut edges in a path, the crack ending inside (9-10 tets)
 };
 
 // Where the blade's tip path crossed a face: one vertex, the base of the crack.
@@ -57,7 +57,7 @@ struct TetSplit {
 TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts);
 
 // A tet whose crack ends inside it: the tip path crossed two faces and the swept surface cut
-// the edges between them (cases iii and iv). The crack's edge points split as in a complete
+// the edges between them (cases iii, iv and v). The crack's edge points split as in a complete
 // cut; the face points stay single. The choice of one inner diagonal (case iii) depends on
 // geometry, so the rest positions are needed: `rest(v)` gives them. An empty result (kNone)
 // for any other pattern, or when no valid split of this kind exists for the geometry.

@@ -4,9 +4,11 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <numeric>
 #include <random>
+#include <set>
 
 #include "mesh/boundary_surface.h"
 #include "mesh/connected_components.h"
@@ -205,7 +207,8 @@ TEST(SplitCompletelyCutTet, NeighboursSplitTheirSharedFaceTheSameWay) {
 // the crack's two sides are boundary of equal area.
 void ExpectCrackedSplitKeepsTheProperties(CutTet& t, const TetSplit& split,
                                           std::size_t expected_tets,
-                                          const std::array<Vector3d, 4>& x) {
+                                          const std::array<Vector3d, 4>& x,
+                                          const std::set<int>& one_side) {
   ASSERT_EQ(split.tets.size(), expected_tets);
   AddOriented(split, &t.mesh);
   double volume = 0;
@@ -221,12 +224,7 @@ void ExpectCrackedSplitKeepsTheProperties(CutTet& t, const TetSplit& split,
   EXPECT_NEAR(volume, t.volume, 1e-12 * t.volume);
   EXPECT_TRUE(mesh::FindMeshDefects(t.mesh).empty());
   EXPECT_EQ(mesh::FindConnectedComponents(t.mesh).count, 1u);
-  // The crack's sides: the copies near the corner every cut edge shares, and the others.
-  const int shared = t.cuts.size() == 1 || t.cuts[0].corner_a == t.cuts[1].corner_a ||
-                             t.cuts[0].corner_a == t.cuts[1].corner_b
-                         ? t.cuts[0].corner_a
-                         : t.cuts[0].corner_b;
-  double on_faces = 0, crack_shared_side = 0, crack_other_side = 0, surface = 0;
+  double on_faces = 0, crack_one_side = 0, crack_other_side = 0, surface = 0;
   for (const auto& face : mesh::kTetFaces) {
     surface += 0.5 * (x[face[1]] - x[face[0]]).cross(x[face[2]] - x[face[0]]).norm();
   }
@@ -249,16 +247,17 @@ void ExpectCrackedSplitKeepsTheProperties(CutTet& t, const TetSplit& split,
       on_faces += area;
       continue;
     }
-    bool shared_side = false;
+    // The crack's sides: the copies near the corners of `one_side`, and the others.
+    bool on_one_side = false;
     for (const EdgeCut& cut : t.cuts) {
-      const VertexId near_shared = cut.corner_a == shared ? cut.near_a : cut.near_b;
-      for (const VertexId v : tri.vertices) shared_side = shared_side || v == near_shared;
+      const VertexId near = one_side.count(cut.corner_a) ? cut.near_a : cut.near_b;
+      for (const VertexId v : tri.vertices) on_one_side = on_one_side || v == near;
     }
-    (shared_side ? crack_shared_side : crack_other_side) += area;
+    (on_one_side ? crack_one_side : crack_other_side) += area;
   }
   EXPECT_NEAR(on_faces, surface, 1e-12 * surface);
-  EXPECT_GT(crack_shared_side, 1e-6 * surface);
-  EXPECT_NEAR(crack_shared_side, crack_other_side, 1e-12 * surface);
+  EXPECT_GT(crack_one_side, 1e-6 * surface);
+  EXPECT_NEAR(crack_one_side, crack_other_side, 1e-12 * surface);
 }
 
 // A point inside triangle (a, b, c), away from its edges.
@@ -285,7 +284,7 @@ TEST(SplitCrackedTet, CaseOneEdgeInAllSixOrientations) {
           SplitCrackedTet(t.corners, t.cuts, {FacePoint{d, on_abc}, FacePoint{c, on_abd}},
                           [&](VertexId v) { return t.mesh.rest_position(v); });
       EXPECT_EQ(split.cut_case, CutCase::kCrackOneEdge);
-      ExpectCrackedSplitKeepsTheProperties(t, split, 6, x);
+      ExpectCrackedSplitKeepsTheProperties(t, split, 6, x, {a});
     }
   }
 }
@@ -327,11 +326,58 @@ TEST(SplitCrackedTet, CaseTwoEdgesInAllTwelveOrientations) {
               SplitCrackedTet(t.corners, t.cuts, {FacePoint{c, on_abd}, FacePoint{b, on_acd}},
                               [&](VertexId v) { return t.mesh.rest_position(v); });
           EXPECT_EQ(split.cut_case, CutCase::kCrackTwoEdges);
-          ExpectCrackedSplitKeepsTheProperties(t, split, 8, x);
+          ExpectCrackedSplitKeepsTheProperties(t, split, 8, x, {a});
         }
       }
     }
   }
+}
+
+TEST(SplitCrackedTet, CaseThreeEdgesInAllTwelveOrientations) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> fraction(0.2, 0.8);
+  std::array<int, 4> path = {0, 1, 2, 3};
+  int orientations = 0;
+  std::map<std::size_t, int> count_of_size;
+  do {
+    if (path[0] > path[3]) continue;  // a path and its reverse are one orientation
+    ++orientations;
+    const auto [a, b, c, d] = path;
+    for (int trial = 0; trial < 30; ++trial) {
+      const std::array<Vector3d, 4> x = RandomTet(random);
+      std::vector<std::pair<int, int>> edges = {{a, b}, {c, b}, {c, d}};
+      std::shuffle(edges.begin(), edges.end(), random);
+      CutTet t = MakeCutTet(x, edges, random);
+      // A blade plane separating {a, c} from {b, d} crosses ab, bc, cd and ad; the crack
+      // stops before ad, its tip path running near the plane across faces abd and acd.
+      const auto cut_point = [&](int i, int j) {
+        for (const EdgeCut& cut : t.cuts) {
+          if ((cut.corner_a == i && cut.corner_b == j) ||
+              (cut.corner_a == j && cut.corner_b == i)) {
+            return t.mesh.rest_position(cut.near_a);
+          }
+        }
+        return Vector3d(x[i] + fraction(random) * (x[j] - x[i]));
+      };
+      const Vector3d ab = cut_point(a, b), cd = cut_point(c, d), ad = cut_point(a, d);
+      const VertexId on_abd = t.mesh.AddVertex(0.7 * (ab + fraction(random) * (ad - ab)) +
+                                               0.3 * InsideTriangle(x[a], x[b], x[d], random));
+      const VertexId on_acd = t.mesh.AddVertex(0.7 * (cd + fraction(random) * (ad - cd)) +
+                                               0.3 * InsideTriangle(x[a], x[c], x[d], random));
+      const TetSplit split =
+          SplitCrackedTet(t.corners, t.cuts, {FacePoint{c, on_abd}, FacePoint{b, on_acd}},
+                          [&](VertexId v) { return t.mesh.rest_position(v); });
+      EXPECT_EQ(split.cut_case, CutCase::kCrackThreeEdges);
+      // 9 tets when the diagonals that neighbours impose on faces abc and bcd allow a split
+      // with no inner edge (a triangulation with all its vertices on the boundary has
+      // 12 - 3 + inner edges tets); otherwise one inner edge, 10.
+      ASSERT_TRUE(split.tets.size() == 9 || split.tets.size() == 10) << split.tets.size();
+      ++count_of_size[split.tets.size()];
+      ExpectCrackedSplitKeepsTheProperties(t, split, split.tets.size(), x, {a, c});
+    }
+  } while (std::next_permutation(path.begin(), path.end()));
+  EXPECT_EQ(orientations, 12);
+  std::printf("case v: %d splits of 9 tets, %d of 10\n", count_of_size[9], count_of_size[10]);
 }
 
 TEST(SplitCompletelyCutTet, IncompleteOrUnknownPatternsAreNotSplit) {
