@@ -1,0 +1,166 @@
+#include "cut/cutter.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+
+#include "mesh/boundary_surface.h"
+#include "mesh/box_lattice.h"
+#include "mesh/connected_components.h"
+#include "mesh/mesh_validation.h"
+#include "support/status_message.h"
+
+namespace kerf::cut {
+namespace {
+
+using kerf::testing::StatusMessage;
+using mesh::TetMesh;
+using mesh::VertexId;
+
+// A 6 x 2 x 2 cm bar of 6 x 2 x 2 cubes.
+TetMesh Bar() {
+  mesh::BoxLatticeSpec spec;
+  spec.cells_x = 6;
+  spec.cells_y = 2;
+  spec.cells_z = 2;
+  spec.size = {0.06, 0.02, 0.02};
+  return *mesh::MakeBoxLattice(spec);
+}
+
+double RestVolume(const TetMesh& m) {
+  double volume = 0;
+  for (const mesh::TetId t : m.tets()) volume += mesh::RestVolume(m, t);
+  return volume;
+}
+
+double BoundaryArea(const TetMesh& m) {
+  double area = 0;
+  for (const auto& tri : mesh::ExtractBoundarySurface(m)) {
+    const Eigen::Vector3d& a = m.rest_position(tri.vertices[0]);
+    area +=
+        0.5 *
+        (m.rest_position(tri.vertices[1]) - a).cross(m.rest_position(tri.vertices[2]) - a).norm();
+  }
+  return area;
+}
+
+// Sweeps a blade from `start` to `end` (tip and heel move together) in steps of 2 mm, 10 ms
+// apart, checking after every pose that the mesh is valid and keeps its volume.
+void Sweep(Cutter& cutter, const TetMesh& m, const Eigen::Vector3d& tip_start,
+           const Eigen::Vector3d& heel_start, const Eigen::Vector3d& travel, double* time) {
+  const double volume = RestVolume(m);
+  const int steps = static_cast<int>(std::ceil(travel.norm() / 0.002));
+  for (int k = 0; k <= steps; ++k) {
+    const Eigen::Vector3d shift = travel * (static_cast<double>(k) / steps);
+    ASSERT_TRUE(cutter.ApplyPose({*time, tip_start + shift, heel_start + shift}).ok());
+    *time += 0.01;
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    ASSERT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+  }
+}
+
+TEST(Cutter, AThroughCutSeparatesTheBarOnTheBladePlane) {
+  TetMesh m = Bar();
+  const std::uint32_t original_vertices = m.vertex_index_bound();
+  const double volume = RestVolume(m);
+  Cutter cutter = *Cutter::Create(&m, 0.01);
+  double time = 0;
+  // The blade spans the bar's depth (z) and crosses it along y at x = 33.7 mm.
+  Sweep(cutter, m, {0.0337, -0.005, -0.005}, {0.0337, -0.005, 0.025}, {0, 0.03, 0}, &time);
+  cutter.Finish();
+  EXPECT_EQ(cutter.waiting_tets(), 0u);
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);  // no vertex shared across the cut
+  for (const VertexId v : m.vertices()) {
+    if (mesh::Index(v) >= original_vertices) {
+      EXPECT_NEAR(m.rest_position(v).x(), 0.0337, 1e-12);  // on the blade's plane
+    }
+  }
+  const CutStatistics& s = cutter.statistics();
+  EXPECT_GT(s.cut_tets, 0u);
+  EXPECT_EQ(s.tets_by_case[static_cast<int>(CutCase::kOneCornerOff)] +
+                s.tets_by_case[static_cast<int>(CutCase::kTwoAndTwo)],
+            s.cut_tets);
+  EXPECT_LE(static_cast<double>(s.new_tets) / static_cast<double>(s.cut_tets), 6.0);
+  EXPECT_EQ(s.dropped_hits, 0u);
+}
+
+TEST(Cutter, ASecondCutAcrossTheFirstCutsItsNewTets) {
+  TetMesh m = Bar();
+  const double volume = RestVolume(m);
+  Cutter cutter = *Cutter::Create(&m, 0.01);
+  double time = 0;
+  Sweep(cutter, m, {0.0337, -0.005, -0.005}, {0.0337, -0.005, 0.025}, {0, 0.03, 0}, &time);
+  cutter.Finish();
+  const std::size_t first = cutter.statistics().cut_tets;
+  // Now along x at y = 11.3 mm, through the whole bar and the first cut.
+  Sweep(cutter, m, {-0.005, 0.0113, -0.005}, {-0.005, 0.0113, 0.025}, {0.07, 0, 0}, &time);
+  cutter.Finish();
+  EXPECT_GT(cutter.statistics().cut_tets, first);
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 4u);
+}
+
+TEST(Cutter, ABladeWhoseTipStaysInsideLeavesACrack) {
+  TetMesh m = Bar();
+  const double volume = RestVolume(m);
+  const double area = BoundaryArea(m);
+  Cutter cutter = *Cutter::Create(&m, 0.01);
+  double time = 0;
+  // The tip runs 9.3 mm deep (the bar is 20 mm deep); the heel stays above the bar.
+  Sweep(cutter, m, {0.0337, -0.005, 0.0107}, {0.0337, -0.005, 0.03}, {0, 0.03, 0}, &time);
+  cutter.Finish();
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
+  const CutStatistics& s = cutter.statistics();
+  const std::size_t cracked = s.tets_by_case[static_cast<int>(CutCase::kCrackOneEdge)] +
+                              s.tets_by_case[static_cast<int>(CutCase::kCrackTwoEdges)] +
+                              s.tets_by_case[static_cast<int>(CutCase::kCrackThreeEdges)];
+  EXPECT_GT(cracked, 0u);
+  // The crack's two faces add about twice its area: 20 mm wide (y) and 9.3 mm deep.
+  EXPECT_NEAR(BoundaryArea(m) - area, 2 * 0.02 * 0.0093, 0.1 * 2 * 0.02 * 0.0093);
+}
+
+TEST(Cutter, ABadPoseIsRefusedAndChangesNothing) {
+  TetMesh m = Bar();
+  Cutter cutter = *Cutter::Create(&m, 0.01);
+  ASSERT_TRUE(cutter.ApplyPose({0, {0.0337, -0.005, -0.005}, {0.0337, -0.005, 0.025}}).ok());
+  const mesh::ChangeMark mark = m.change_log().Mark();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(StatusMessage(cutter.ApplyPose({0.01, {nan, 0, 0}, {0, 0, 0.02}})),
+            "the pose has a non-finite time, tip or heel");
+  EXPECT_EQ(StatusMessage(cutter.ApplyPose({0.02, {0.0337, 0.03, -0.005}, {0.0337, 0.03, 0.025}})),
+            "the blade jumps 0.035 m in one pose; at most 0.02 m is accepted");
+  EXPECT_EQ(m.change_log().Mark(), mark);
+  // The blade is where it was: a good pose still continues from there.
+  EXPECT_TRUE(cutter.ApplyPose({0.03, {0.0337, -0.003, -0.005}, {0.0337, -0.003, 0.025}}).ok());
+}
+
+TEST(Cutter, CutsTheDeformedShapeAndPlacesRestPositionsByTheSameCoordinates) {
+  TetMesh m = Bar();
+  for (const VertexId v : m.vertices()) {
+    Eigen::Vector3d p = m.rest_position(v);
+    p.x() *= 1.1;  // stretched 10% along x
+    m.set_current_position(v, p);
+  }
+  const std::uint32_t original_vertices = m.vertex_index_bound();
+  Cutter cutter = *Cutter::Create(&m, 0.01);
+  double time = 0;
+  Sweep(cutter, m, {0.0337 * 1.1, -0.005, -0.005}, {0.0337 * 1.1, -0.005, 0.025}, {0, 0.03, 0},
+        &time);
+  cutter.Finish();
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+  for (const VertexId v : m.vertices()) {
+    if (mesh::Index(v) < original_vertices) continue;
+    EXPECT_NEAR(m.current_position(v).x(), 0.0337 * 1.1, 1e-12);
+    EXPECT_NEAR(m.rest_position(v).x(), 0.0337, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace kerf::cut
