@@ -4,7 +4,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <random>
 
 #include "mesh/boundary_surface.h"
 #include "mesh/box_lattice.h"
@@ -160,6 +162,57 @@ TEST(Cutter, CutsTheDeformedShapeAndPlacesRestPositionsByTheSameCoordinates) {
     EXPECT_NEAR(m.current_position(v).x(), 0.0337 * 1.1, 1e-12);
     EXPECT_NEAR(m.rest_position(v).x(), 0.0337, 1e-12);
   }
+}
+
+}  // namespace
+}  // namespace kerf::cut
+
+namespace kerf::cut {
+namespace {
+
+// Random blades wandering through the bar, with reversals and hesitations: the mesh must be
+// valid, conforming and keep its volume after every pose, and whatever the blade did, the
+// cut never loses material. 200 paths of 50 poses: 10^4 poses.
+TEST(Cutter, RandomPathsKeepEveryPropertyAfterEveryPose) {
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t cut_tets = 0, dropped = 0, poses = 0;
+  for (int path = 0; path < 200; ++path) {
+    TetMesh m = Bar();
+    const double volume = RestVolume(m);
+    Cutter cutter = *Cutter::Create(&m, 0.01);
+    // A blade of 15-35 mm starting somewhere around the bar, pointing roughly downward.
+    Eigen::Vector3d tip(0.06 * unit(random), 0.03 * unit(random) - 0.005, 0.025 * unit(random));
+    Eigen::Vector3d along(unit(random) - 0.5, unit(random) - 0.5, 1.5);
+    Eigen::Vector3d heel = tip + (0.015 + 0.02 * unit(random)) * along.normalized();
+    Eigen::Vector3d velocity(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5);
+    double time = 0;
+    for (int k = 0; k < 50; ++k, ++poses) {
+      ASSERT_TRUE(cutter.ApplyPose({time, tip, heel}).ok());
+      ASSERT_TRUE(mesh::FindMeshDefects(m).empty())
+          << "path " << path << " pose " << k << ": " << mesh::ValidateMesh(m);
+      ASSERT_NEAR(RestVolume(m), volume, 1e-12 * volume) << "path " << path << " pose " << k;
+      time += 0.01;
+      const double what = unit(random);
+      if (what < 0.1) continue;                 // hesitate
+      if (what < 0.2) velocity = -velocity;     // reverse
+      if (what < 0.3) velocity += Eigen::Vector3d(unit(random) - 0.5, unit(random) - 0.5, 0);
+      const Eigen::Vector3d step = 0.0015 * velocity.normalized();
+      const Eigen::Vector3d twist = 0.0005 * Eigen::Vector3d(unit(random) - 0.5,
+                                                            unit(random) - 0.5, 0);
+      tip += step;
+      heel += step + twist;
+    }
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << "path " << path << ": " << mesh::ValidateMesh(m);
+    ASSERT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    cut_tets += cutter.statistics().cut_tets;
+    dropped += cutter.statistics().dropped_hits;
+  }
+  std::printf("random paths: %zu poses, %zu tets cut, %zu hits dropped\n", poses, cut_tets,
+              dropped);
+  EXPECT_EQ(poses, 10000u);
+  EXPECT_GT(cut_tets, 0u);
 }
 
 }  // namespace
