@@ -43,7 +43,7 @@ absl::Status Cutter::ApplyPose(const BladePose& pose) {
   if (absl::Status s = ValidatePose(pose, previous_ ? &*previous_ : nullptr, limits_); !s.ok()) {
     return s;
   }
-  if (absl::Status s = grid_.Refresh(); !s.ok()) return s;
+  if (absl::Status s = grid_.RefreshTopology(); !s.ok()) return s;
   if (previous_) {
     RecordHits(*previous_, pose);
     SplitReadyGroups(&pose, /*all=*/false);

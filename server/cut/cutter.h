@@ -52,6 +52,10 @@ class Cutter {
   // The blade is withdrawn: every group still waiting is split.
   void Finish();
 
+  // Call after the mesh deformed (a physics step): the spatial index follows the current
+  // positions. O(vertices).
+  absl::Status MeshDeformed() { return grid_.Refresh(); }
+
   const CutStatistics& statistics() const { return statistics_; }
   // Tets with hits that wait for the blade to leave their group.
   std::size_t waiting_tets() const { return active_.size(); }

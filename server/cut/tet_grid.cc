@@ -75,7 +75,7 @@ void TetGrid::Unregister(TetId t) {
   --registered_count_;
 }
 
-absl::Status TetGrid::Refresh() {
+absl::Status TetGrid::RefreshTopology() {
   absl::StatusOr<mesh::MeshChanges> changes = mesh_->change_log().ChangesSince(synced_);
   if (!changes.ok()) return changes.status();
   last_refresh_count_ = 0;
@@ -84,23 +84,32 @@ absl::Status TetGrid::Refresh() {
   for (std::size_t i = registered_at_.size(); i < current.size(); ++i) {
     registered_at_.push_back(current[i]);  // new vertices start at their current position
   }
+  for (const TetId t : changes->added_tets) {
+    Register(t);
+    ++last_refresh_count_;
+  }
+  synced_ = mesh_->change_log().Mark();
+  return absl::OkStatus();
+}
+
+absl::Status TetGrid::Refresh() {
+  if (absl::Status s = RefreshTopology(); !s.ok()) return s;
   // A vertex that moved farther than the margin from its reference gets a new reference, and
   // every tet around it is registered again.
+  const auto current = mesh_->current_positions();
   std::vector<TetId> stale;
   for (const VertexId v : mesh_->vertices()) {
     if ((current[Index(v)] - registered_at_[Index(v)]).norm() <= margin_) continue;
     registered_at_[Index(v)] = current[Index(v)];
     for (const TetId t : mesh_->TetsAround(v)) stale.push_back(t);
   }
-  stale.insert(stale.end(), changes->added_tets.begin(), changes->added_tets.end());
   std::sort(stale.begin(), stale.end());
   stale.erase(std::unique(stale.begin(), stale.end()), stale.end());
   for (const TetId t : stale) {
-    if (Index(t) < ranges_.size()) Unregister(t);
+    Unregister(t);
     Register(t);
     ++last_refresh_count_;
   }
-  synced_ = mesh_->change_log().Mark();
   return absl::OkStatus();
 }
 

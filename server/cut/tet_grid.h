@@ -4,9 +4,9 @@
 // Each vertex has a reference position, and each tet is registered in the cells its bounding
 // box covers, inflated by twice a margin. A vertex within the margin of its reference was
 // within the margin when its tets were registered, so it is inside their boxes. Refresh()
-// moves the reference of a vertex that went farther and re-registers the tets around it, and
-// registers the tets the mesh added or removed (read from its change log). A query returns a
-// superset of the live tets whose current bounding box meets the query box.
+// moves the reference of a vertex that went farther and re-registers the tets around it;
+// RefreshTopology() registers the tets the mesh added or removed (read from its change log). A
+// query returns a superset of the live tets whose current bounding box meets the query box.
 #pragma once
 
 #include <Eigen/Core>
@@ -26,8 +26,12 @@ class TetGrid {
   // The mesh must outlive the grid. O(tets).
   static absl::StatusOr<TetGrid> Build(const mesh::TetMesh& mesh, double cell_size, double margin);
 
-  // Brings the grid up to date with the mesh's current positions and topology.
-  // O(vertices) to find what moved, plus O(tets re-registered).
+  // Registers the tets the mesh added and forgets those it removed since the last refresh.
+  // O(tets changed): cheap enough for every blade pose.
+  absl::Status RefreshTopology();
+
+  // Also follows the deformation: re-registers the tets around vertices that moved beyond
+  // the margin. O(vertices), as a physics step is: call it after steps, not per pose.
   absl::Status Refresh();
 
   // Live tets whose current bounding box may meet [low, high]: every such tet is included,

@@ -152,6 +152,7 @@ TEST(Cutter, CutsTheDeformedShapeAndPlacesRestPositionsByTheSameCoordinates) {
   }
   const std::uint32_t original_vertices = m.vertex_index_bound();
   Cutter cutter = *Cutter::Create(&m, 0.01);
+  ASSERT_TRUE(cutter.MeshDeformed().ok());
   double time = 0;
   Sweep(cutter, m, {0.0337 * 1.1, -0.005, -0.005}, {0.0337 * 1.1, -0.005, 0.025}, {0, 0.03, 0},
         &time);
@@ -194,17 +195,18 @@ TEST(Cutter, RandomPathsKeepEveryPropertyAfterEveryPose) {
       ASSERT_NEAR(RestVolume(m), volume, 1e-12 * volume) << "path " << path << " pose " << k;
       time += 0.01;
       const double what = unit(random);
-      if (what < 0.1) continue;                 // hesitate
-      if (what < 0.2) velocity = -velocity;     // reverse
+      if (what < 0.1) continue;              // hesitate
+      if (what < 0.2) velocity = -velocity;  // reverse
       if (what < 0.3) velocity += Eigen::Vector3d(unit(random) - 0.5, unit(random) - 0.5, 0);
       const Eigen::Vector3d step = 0.0015 * velocity.normalized();
-      const Eigen::Vector3d twist = 0.0005 * Eigen::Vector3d(unit(random) - 0.5,
-                                                            unit(random) - 0.5, 0);
+      const Eigen::Vector3d twist =
+          0.0005 * Eigen::Vector3d(unit(random) - 0.5, unit(random) - 0.5, 0);
       tip += step;
       heel += step + twist;
     }
     cutter.Finish();
-    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << "path " << path << ": " << mesh::ValidateMesh(m);
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty())
+        << "path " << path << ": " << mesh::ValidateMesh(m);
     ASSERT_NEAR(RestVolume(m), volume, 1e-12 * volume);
     cut_tets += cutter.statistics().cut_tets;
     dropped += cutter.statistics().dropped_hits;
