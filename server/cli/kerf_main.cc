@@ -5,6 +5,8 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "cli/cut_command.h"
+#include "cli/experiment_command.h"
 #include "cli/mesh_commands.h"
 #include "cli/sim_command.h"
 #include "cli/static_command.h"
@@ -18,7 +20,9 @@ constexpr absl::string_view kUsage =
     "       kerf mesh convert IN OUT\n"
     "       kerf sim run [SCENE] [--steps N] [--vtu-out DIR]\n"
     "       kerf sim list\n"
-    "       kerf static DECK.inp [--json]\n";
+    "       kerf static DECK.inp [--json]\n"
+    "       kerf cut MESH --path PATH.json --out OUT.vtu [--json]\n"
+    "       kerf experiment lattice-cut [--json]\n";
 
 }  // namespace
 
@@ -32,6 +36,10 @@ int main(int argc, char** argv) {
   absl::StatusOr<std::string> result;
   if (args[0] == "mesh") {
     result = kerf::cli::RunMeshCommand(rest);
+  } else if (args[0] == "experiment") {
+    result = kerf::cli::RunExperimentCommand(rest);
+  } else if (args[0] == "cut") {
+    result = kerf::cli::RunCutCommand(rest);
   } else if (args[0] == "sim") {
     result = kerf::cli::RunSimCommand(rest);
   } else if (args[0] == "static") {

@@ -1,10 +1,8 @@
 #include "cli/mesh_report.h"
 
-#include <cassert>
-
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "google/protobuf/util/json_util.h"
+#include "cli/json_output.h"
 #include "mesh/boundary_surface.h"
 #include "mesh/connected_components.h"
 #include "mesh/mesh_quality.h"
@@ -95,15 +93,7 @@ std::string FormatMeshReportText(const kerf::v1::MeshReport& r) {
 }
 
 std::string FormatMeshReportJson(const kerf::v1::MeshReport& report) {
-  google::protobuf::util::JsonPrintOptions options;
-  options.add_whitespace = true;
-  options.always_print_primitive_fields = true;
-  options.preserve_proto_field_names = true;
-  std::string json;
-  const auto status = google::protobuf::util::MessageToJsonString(report, &json, options);
-  assert(status.ok());
-  (void)status;
-  return json;
+  return FormatProtoJson(report);
 }
 
 }  // namespace kerf::cli

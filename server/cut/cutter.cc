@@ -1,6 +1,7 @@
 #include "cut/cutter.h"
 
 #include <algorithm>
+#include <cassert>
 #include <numeric>
 
 #include "absl/strings/str_cat.h"
@@ -215,6 +216,11 @@ std::vector<FacePoint> Cutter::FacePointsOf(const mesh::TetVertices& corners) co
   return points;
 }
 
+TetId Cutter::SourceTet(TetId t) const {
+  const auto it = source_tet_.find(t);
+  return it == source_tet_.end() ? t : it->second;
+}
+
 void Cutter::SplitGroup(std::vector<TetId> group) {
   const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
   while (true) {
@@ -253,7 +259,9 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
                                      rest(piece[3])) < 0) {
             std::swap(piece[2], piece[3]);
           }
-          (void)mesh_->AddTet(piece);
+          const absl::StatusOr<TetId> added = mesh_->AddTet(piece);
+          assert(added.ok());
+          source_tet_[*added] = SourceTet(t);
         }
         ++statistics_.cut_tets;
         statistics_.new_tets += split.tets.size();

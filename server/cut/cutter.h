@@ -60,6 +60,12 @@ class Cutter {
   // Tets with hits that wait for the blade to leave their group.
   std::size_t waiting_tets() const { return active_.size(); }
 
+  // The tet of the mesh as it was when the cutter was created that `t` came from (t itself
+  // if it was never cut).
+  mesh::TetId SourceTet(mesh::TetId t) const;
+  // Whether the cutter made `t` (it replaced a cut tet).
+  bool MadeByCut(mesh::TetId t) const { return source_tet_.contains(t); }
+
  private:
   struct EdgeHit {
     double fraction;  // from the lower-id vertex to the higher
@@ -96,7 +102,8 @@ class Cutter {
   std::optional<BladePose> previous_;
   absl::flat_hash_map<EdgeKey, EdgeHit> edge_hits_;
   absl::flat_hash_map<FaceKey, FaceHit, FaceKeyHash> face_hits_;
-  absl::flat_hash_set<mesh::TetId> active_;  // unsplit tets with a hit
+  absl::flat_hash_set<mesh::TetId> active_;                   // unsplit tets with a hit
+  absl::flat_hash_map<mesh::TetId, mesh::TetId> source_tet_;  // tets the cut made
   CutStatistics statistics_;
 };
 

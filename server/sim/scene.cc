@@ -9,7 +9,7 @@
 #include "google/protobuf/text_format.h"
 #include "mesh/box_lattice.h"
 #include "mesh/io/mesh_file.h"
-#include "sim/embedded_scenes.h"
+#include "embedded_text.h"
 
 namespace kerf::sim {
 namespace {
@@ -188,14 +188,12 @@ absl::StatusOr<Scene> BuildScene(const kerf::v1::Scene& spec, absl::string_view 
 
 std::vector<std::string> EmbeddedSceneNames() {
   std::vector<std::string> names;
-  for (const auto& [name, text] : internal::kEmbeddedScenes) names.emplace_back(name);
+  for (const EmbeddedText& scene : EmbeddedScenes()) names.emplace_back(scene.name);
   return names;
 }
 
 absl::StatusOr<std::string> EmbeddedSceneText(absl::string_view name) {
-  for (const auto& [embedded, text] : internal::kEmbeddedScenes) {
-    if (absl::string_view(embedded) == name) return std::string(text);
-  }
+  if (const auto text = FindEmbeddedText(EmbeddedScenes(), name)) return std::string(*text);
   return absl::NotFoundError(absl::StrCat("no embedded scene '", name, "' (there are: ",
                                           absl::StrJoin(EmbeddedSceneNames(), ", "), ")"));
 }

@@ -10,6 +10,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "google/protobuf/util/json_util.h"
+#include "kerf/v1/cut_report.pb.h"
 #include "kerf/v1/mesh_report.pb.h"
 #include "support/shared_meshes.h"
 
@@ -117,6 +118,71 @@ TEST(KerfCli, SimAndStaticErrors) {
   run = Kerf("sim list");
   EXPECT_EQ(run.exit_code, 0);
   EXPECT_THAT(run.output, HasSubstr("lattice-tension: The paper's 4x6x4 lattice"));
+}
+
+TEST(KerfCli, CutWritesTheCutMeshWithItsSourcesAndReports) {
+  const std::string dir = ::testing::TempDir();
+  ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 6 2 2 --size 0.06 0.02 0.02 --out ", dir, "/bar.msh"))
+                .exit_code,
+            0);
+  std::ofstream(dir + "/path.json") << R"({"poses": [
+    {"time": 0.00, "tip": [0.0337, -0.005, -0.005], "heel": [0.0337, -0.005, 0.025]},
+    {"time": 0.01, "tip": [0.0337, 0.005, -0.005], "heel": [0.0337, 0.005, 0.025]},
+    {"time": 0.02, "tip": [0.0337, 0.015, -0.005], "heel": [0.0337, 0.015, 0.025]},
+    {"time": 0.03, "tip": [0.0337, 0.025, -0.005], "heel": [0.0337, 0.025, 0.025]}]})";
+  const CliResult run = Kerf(absl::StrCat("cut ", dir, "/bar.msh --path ", dir,
+                                          "/path.json --out ", dir, "/cut.vtu --json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  kerf::v1::CutReport report;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok()) << run.output;
+  EXPECT_EQ(report.tets_before(), 144u);
+  EXPECT_EQ(report.cut_tets(), 24u);
+  EXPECT_EQ(report.tets_after(), 144u - 24u + report.new_tets());
+  EXPECT_EQ(report.case_i() + report.case_ii(), report.cut_tets());
+  EXPECT_LE(report.new_per_cut(), 6.0);
+  EXPECT_EQ(report.components(), 2u);
+  EXPECT_TRUE(report.valid());
+  std::ifstream vtu(dir + "/cut.vtu");
+  const std::string text((std::istreambuf_iterator<char>(vtu)), {});
+  for (const char* array : {"Name=\"rest_position\"", "Name=\"source_vertex\"",
+                            "Name=\"source_tet\""}) {
+    EXPECT_THAT(text, HasSubstr(array));
+  }
+  const CliResult info = Kerf(absl::StrCat("mesh info ", dir, "/cut.vtu --json"));
+  EXPECT_EQ(ParseReport(info.output).tets(), report.tets_after());
+  EXPECT_EQ(ParseReport(info.output).components(), 2u);
+}
+
+TEST(KerfCli, CutRefusesABadPathNamingThePose) {
+  const std::string dir = ::testing::TempDir();
+  ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 2 2 2 --out ", dir, "/small.msh")).exit_code, 0);
+  std::ofstream(dir + "/jump.json") << R"({"poses": [
+    {"time": 0, "tip": [0.5, -1, -1], "heel": [0.5, -1, 3]},
+    {"time": 1, "tip": [0.5, 900, -1], "heel": [0.5, 900, 3]}]})";
+  const CliResult run = Kerf(absl::StrCat("cut ", dir, "/small.msh --path ", dir,
+                                          "/jump.json --out ", dir, "/x.vtu"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("jump.json: pose 1: the blade jumps 901 m in one pose"));
+}
+
+TEST(KerfCli, LatticeCutExperimentMeetsThePapersFigure) {
+  const CliResult run = Kerf("experiment lattice-cut --json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  kerf::v1::CutExperiment experiment;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
+  ASSERT_EQ(experiment.cuts_size(), 2);
+  const kerf::v1::CutReport& straight = experiment.cuts(0);
+  EXPECT_EQ(straight.path(), "lattice-straight");
+  EXPECT_EQ(straight.tets_before(), 576u);
+  EXPECT_GT(straight.cut_tets(), 0u);
+  EXPECT_LE(straight.new_per_cut(), 5.2);  // the paper's 312 / 60
+  EXPECT_EQ(straight.components(), 2u);    // cut through
+  EXPECT_TRUE(straight.valid());
+  const kerf::v1::CutReport& curved = experiment.cuts(1);
+  EXPECT_EQ(curved.components(), 1u);  // a crack 2 cm deep
+  EXPECT_GT(curved.case_iii() + curved.case_iv() + curved.case_v(), 0u);
+  EXPECT_TRUE(curved.valid());
+  EXPECT_EQ(Kerf("experiment nothing").exit_code, 1);
 }
 
 TEST(KerfCli, NoCommandExitsTwoAndFailuresExitOneWithAMessage) {

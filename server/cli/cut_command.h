@@ -1,0 +1,38 @@
+// kerf cut MESH --path PATH.json --out OUT.vtu [--json]: applies a blade path to a mesh file
+// or a scene (its initial state: rest, or the static solution of a STATIC scene) and writes
+// the result. OUT.vtu has the current positions as points, the point arrays rest_position and
+// source_vertex (the original vertex id, -1 for a vertex the cut made) and the cell array
+// source_tet (the original tet each tet came from).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "cut/blade.h"
+#include "kerf/v1/cut_report.pb.h"
+#include "mesh/tet_mesh.h"
+#include "sim/scene.h"
+
+namespace kerf::cli {
+
+absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& args);
+
+// Cuts `mesh` along `poses` (then withdraws the blade) and reports what the cut did. The
+// blade limits scale with the mesh: at most twice its size long, a quarter of it per pose.
+absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* mesh,
+                                                 const std::vector<cut::BladePose>& poses,
+                                                 absl::string_view path_name,
+                                                 std::vector<mesh::TetId>* source_tets = nullptr);
+
+// The blade limits for a mesh of this size (bounding-box diagonal, in its length unit).
+cut::BladeLimits LimitsForMeshSize(double diagonal);
+// The bounding-box diagonal of the current positions.
+double MeshDiagonal(const mesh::TetMesh& mesh);
+
+// A copy of a scene's mesh in the scene's initial state (rest, or the static solution of a
+// STATIC scene).
+absl::StatusOr<mesh::TetMesh> MeshOfScene(sim::Scene scene);
+
+}  // namespace kerf::cli

@@ -1,0 +1,18 @@
+// kerf experiment NAME [--json]: the project's repeatable experiments.
+//   lattice-cut: the paper's experiment (Mor & Kanade 2000, section 6): the 4x6x4 lattice of
+//   576 tets held at equilibrium under 10% tension (scene lattice-tension, solved statically),
+//   cut along the blade paths in server/cut/paths/ (a straight cut through the whole depth
+//   across the pull, and a curved cut 2 cm deep), reported beside the paper's figures.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+
+namespace kerf::cli {
+
+absl::StatusOr<std::string> RunExperimentCommand(const std::vector<absl::string_view>& args);
+
+}  // namespace kerf::cli
