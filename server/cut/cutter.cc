@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <numeric>
+#include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "geometry/segment_triangle_intersection.h"
@@ -46,19 +47,19 @@ absl::Status Cutter::ApplyPose(const BladePose& pose) {
   }
   if (absl::Status s = grid_.RefreshTopology(); !s.ok()) return s;
   if (previous_) {
-    RecordHits(*previous_, pose);
-    SplitReadyGroups(&pose, /*all=*/false);
+    const std::vector<TetId> near = RecordHits(*previous_, pose);
+    SplitReadyGroups(&pose, &near);
   }
   previous_ = pose;
   return absl::OkStatus();
 }
 
 void Cutter::Finish() {
-  SplitReadyGroups(nullptr, /*all=*/true);
+  SplitReadyGroups(nullptr, nullptr);
   previous_.reset();
 }
 
-void Cutter::RecordHits(const BladePose& from, const BladePose& to) {
+std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to) {
   const std::array<std::array<Eigen::Vector3d, 3>, 2> swept = {
       {{from.tip, from.heel, to.heel}, {from.tip, to.heel, to.tip}}};
   Eigen::Vector3d low = from.tip.cwiseMin(from.heel).cwiseMin(to.tip).cwiseMin(to.heel);
@@ -67,7 +68,8 @@ void Cutter::RecordHits(const BladePose& from, const BladePose& to) {
   absl::flat_hash_set<FaceKey, FaceKeyHash> tested_faces;
   std::vector<EdgeKey> new_edges;
   std::vector<FaceKey> new_faces;
-  for (const TetId t : grid_.Candidates(low, high)) {
+  std::vector<TetId> near = grid_.Candidates(low, high);
+  for (const TetId t : near) {
     const mesh::TetVertices v = mesh_->tet(t);
     for (const auto& [i, j] : mesh::kTetEdges) {
       const EdgeKey key = MakeEdgeKey(v[i], v[j]);
@@ -103,13 +105,36 @@ void Cutter::RecordHits(const BladePose& from, const BladePose& to) {
     }
   }
   for (const EdgeKey key : new_edges) {
-    const auto around = mesh_->TetsAroundEdge(VertexId(static_cast<std::uint32_t>(key >> 32)),
-                                              VertexId(static_cast<std::uint32_t>(key)));
-    active_.insert(around.begin(), around.end());
+    Join(mesh_->TetsAroundEdge(VertexId(static_cast<std::uint32_t>(key >> 32)),
+                               VertexId(static_cast<std::uint32_t>(key))));
   }
-  for (const FaceKey& key : new_faces) {
-    const auto around = mesh_->TetsAroundFace(key[0], key[1], key[2]);
-    active_.insert(around.begin(), around.end());
+  for (const FaceKey& key : new_faces) Join(mesh_->TetsAroundFace(key[0], key[1], key[2]));
+  return near;
+}
+
+TetId Cutter::GroupOf(TetId t) {
+  TetId root = t;
+  while (group_of_.at(root) != root) root = group_of_.at(root);
+  while (t != root) {  // path compression
+    TetId& parent = group_of_.at(t);
+    t = std::exchange(parent, root);
+  }
+  return root;
+}
+
+void Cutter::Join(std::span<const TetId> tets) {
+  for (const TetId t : tets) {
+    if (group_of_.try_emplace(t, t).second) members_[t] = {t};
+  }
+  for (std::size_t i = 1; i < tets.size(); ++i) {
+    TetId a = GroupOf(tets[0]), b = GroupOf(tets[i]);
+    if (a == b) continue;
+    if (members_[a].size() < members_[b].size()) std::swap(a, b);
+    std::vector<TetId>& into = members_[a];
+    std::vector<TetId>& from = members_[b];
+    into.insert(into.end(), from.begin(), from.end());
+    members_.erase(b);
+    group_of_[b] = a;
   }
 }
 
@@ -137,44 +162,23 @@ bool Cutter::BladeInside(TetId t, const BladePose& pose) const {
   return false;
 }
 
-void Cutter::SplitReadyGroups(const BladePose* pose, bool all) {
-  // Groups: active tets joined through cut edges and crossed faces.
-  std::vector<TetId> tets(active_.begin(), active_.end());
-  std::sort(tets.begin(), tets.end());
-  absl::flat_hash_map<TetId, std::size_t> slot;
-  for (std::size_t i = 0; i < tets.size(); ++i) slot[tets[i]] = i;
-  std::vector<std::size_t> parent(tets.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  auto join = [&](std::size_t a, TetId other) {
-    const auto it = slot.find(other);
-    if (it != slot.end()) parent[find(a)] = find(it->second);
-  };
-  for (std::size_t i = 0; i < tets.size(); ++i) {
-    const mesh::TetVertices v = mesh_->tet(tets[i]);
-    for (const auto& [a, b] : mesh::kTetEdges) {
-      if (!edge_hits_.contains(MakeEdgeKey(v[a], v[b]))) continue;
-      for (const TetId other : mesh_->TetsAroundEdge(v[a], v[b])) join(i, other);
-    }
-    for (const auto& face : mesh::kTetFaces) {
-      if (!face_hits_.contains(MakeFaceKey(v[face[0]], v[face[1]], v[face[2]]))) continue;
-      for (const TetId other : mesh_->TetsAroundFace(v[face[0]], v[face[1]], v[face[2]])) {
-        join(i, other);
+void Cutter::SplitReadyGroups(const BladePose* pose, const std::vector<TetId>* near) {
+  absl::flat_hash_set<TetId> blade_inside;  // roots of groups the blade is still in
+  if (near != nullptr) {
+    for (const TetId t : *near) {
+      if (group_of_.contains(t) && !blade_inside.contains(GroupOf(t)) && BladeInside(t, *pose)) {
+        blade_inside.insert(GroupOf(t));
       }
     }
   }
-  absl::flat_hash_map<std::size_t, std::vector<TetId>> groups;
-  for (std::size_t i = 0; i < tets.size(); ++i) groups[find(i)].push_back(tets[i]);
   std::vector<std::vector<TetId>> ready;
-  for (auto& [root, group] : groups) {
-    const bool blade_left = all || std::none_of(group.begin(), group.end(),
-                                                [&](TetId t) { return BladeInside(t, *pose); });
-    if (blade_left) ready.push_back(std::move(group));
+  for (const auto& [root, members] : members_) {
+    if (!blade_inside.contains(root)) ready.push_back(members);
   }
-  std::sort(ready.begin(), ready.end());  // deterministic order
+  for (std::vector<TetId>& group : ready) {
+    std::sort(group.begin(), group.end());  // deterministic order
+  }
+  std::sort(ready.begin(), ready.end());
   for (std::vector<TetId>& group : ready) SplitGroup(std::move(group));
 }
 
@@ -296,7 +300,10 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       }
     }
   }
-  for (const TetId t : group) active_.erase(t);
+  for (const TetId t : group) {
+    members_.erase(t);
+    group_of_.erase(t);
+  }
 }
 
 }  // namespace kerf::cut

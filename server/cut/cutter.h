@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
@@ -58,7 +59,7 @@ class Cutter {
 
   const CutStatistics& statistics() const { return statistics_; }
   // Tets with hits that wait for the blade to leave their group.
-  std::size_t waiting_tets() const { return active_.size(); }
+  std::size_t waiting_tets() const { return group_of_.size(); }
 
   // The tet of the mesh as it was when the cutter was created that `t` came from (t itself
   // if it was never cut).
@@ -86,10 +87,15 @@ class Cutter {
   Cutter(mesh::TetMesh* mesh, TetGrid grid, const BladeLimits& limits)
       : mesh_(mesh), grid_(std::move(grid)), limits_(limits) {}
 
-  void RecordHits(const BladePose& from, const BladePose& to);
+  // Records the hits of the swept surface from `from` to `to`, and returns the tets near it.
+  std::vector<mesh::TetId> RecordHits(const BladePose& from, const BladePose& to);
   bool BladeInside(mesh::TetId t, const BladePose& pose) const;
-  // Splits the groups whose members the blade has all left (every group if `all`).
-  void SplitReadyGroups(const BladePose* pose, bool all);
+  // Joins the groups of tets that share a new hit (each made a group if it was not in one).
+  void Join(std::span<const mesh::TetId> tets);
+  mesh::TetId GroupOf(mesh::TetId t);
+  // Splits the groups none of whose members the blade is inside: it can only be inside the
+  // tets near it, `near` (every group if `near` is null). O(near + groups).
+  void SplitReadyGroups(const BladePose* pose, const std::vector<mesh::TetId>* near);
   void SplitGroup(std::vector<mesh::TetId> group);
   std::vector<EdgeCut> EdgeCutsOf(const mesh::TetVertices& corners);
   std::vector<FacePoint> FacePointsOf(const mesh::TetVertices& corners) const;
@@ -102,8 +108,11 @@ class Cutter {
   std::optional<BladePose> previous_;
   absl::flat_hash_map<EdgeKey, EdgeHit> edge_hits_;
   absl::flat_hash_map<FaceKey, FaceHit, FaceKeyHash> face_hits_;
-  absl::flat_hash_set<mesh::TetId> active_;                   // unsplit tets with a hit
-  absl::flat_hash_map<mesh::TetId, mesh::TetId> source_tet_;  // tets the cut made
+  // Groups of unsplit tets with hits, joined through shared hits: a union-find forest over the
+  // tets (parent links) and the members of each root.
+  absl::flat_hash_map<mesh::TetId, mesh::TetId> group_of_;
+  absl::flat_hash_map<mesh::TetId, std::vector<mesh::TetId>> members_;
+  absl::flat_hash_map<mesh::TetId, mesh::TetId> source_tet_;  // tets the cut made, by source
   CutStatistics statistics_;
 };
 
