@@ -188,7 +188,18 @@ VertexId Cutter::MakeVertex(const std::array<VertexId, 3>& from, const Eigen::Ve
     rest += weights[k] * mesh_->rest_position(from[k]);
     current += weights[k] * mesh_->current_position(from[k]);
   }
-  return mesh_->AddVertex(rest, current);
+  const VertexId v = mesh_->AddVertex(rest, current);
+  made_vertices_.push_back({v, from, weights});
+  return v;
+}
+
+std::vector<MadeVertex> Cutter::TakeMadeVertices() {
+  std::vector<MadeVertex> made;
+  for (const MadeVertex& m : made_vertices_) {
+    if (mesh_->IsAlive(m.vertex)) made.push_back(m);  // dropped hits removed theirs
+  }
+  made_vertices_.clear();
+  return made;
 }
 
 std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners) {

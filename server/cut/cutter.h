@@ -31,6 +31,15 @@
 
 namespace kerf::cut {
 
+// Where a vertex the cut made comes from: weights on up to three vertices (an edge's two, or
+// a face's three), the same for its rest and current positions. Data attached to vertices
+// (displacement, velocity) follows it by the same weights.
+struct MadeVertex {
+  mesh::VertexId vertex;
+  std::array<mesh::VertexId, 3> from;
+  Eigen::Vector3d weights;
+};
+
 struct CutStatistics {
   std::size_t cut_tets = 0;                   // original tets replaced
   std::size_t new_tets = 0;                   // tets that replaced them
@@ -64,6 +73,9 @@ class Cutter {
   // The tet of the mesh as it was when the cutter was created that `t` came from (t itself
   // if it was never cut).
   mesh::TetId SourceTet(mesh::TetId t) const;
+  // The vertices made since the last call that are still used (in creation order).
+  std::vector<MadeVertex> TakeMadeVertices();
+
   // Whether the cutter made `t` (it replaced a cut tet).
   bool MadeByCut(mesh::TetId t) const { return source_tet_.contains(t); }
 
@@ -113,6 +125,7 @@ class Cutter {
   absl::flat_hash_map<mesh::TetId, mesh::TetId> group_of_;
   absl::flat_hash_map<mesh::TetId, std::vector<mesh::TetId>> members_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> source_tet_;  // tets the cut made, by source
+  std::vector<MadeVertex> made_vertices_;
   CutStatistics statistics_;
 };
 

@@ -5,11 +5,11 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "embedded_text.h"
 #include "google/protobuf/io/tokenizer.h"
 #include "google/protobuf/text_format.h"
 #include "mesh/box_lattice.h"
 #include "mesh/io/mesh_file.h"
-#include "embedded_text.h"
 
 namespace kerf::sim {
 namespace {

@@ -37,6 +37,57 @@ void Simulation::Step() {
   UpdateCurrentPositions();
 }
 
+absl::Status Simulation::ApplyBladePose(const cut::BladePose& pose) {
+  if (cutter_ == nullptr) {
+    // The spatial index's cells are about an edge long.
+    double edges = 0, count = 0;
+    for (const mesh::TetId t : scene_.mesh.tets()) {
+      const mesh::TetVertices& v = scene_.mesh.tet(t);
+      for (const auto& [i, j] : mesh::kTetEdges) {
+        edges += (scene_.mesh.rest_position(v[i]) - scene_.mesh.rest_position(v[j])).norm();
+        ++count;
+      }
+    }
+    absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(&scene_.mesh, edges / count);
+    if (!cutter.ok()) return cutter.status();
+    cutter_ = std::make_unique<cut::Cutter>(*std::move(cutter));
+  } else if (absl::Status s = cutter_->MeshDeformed(); !s.ok()) {
+    return s;
+  }
+  if (absl::Status s = cutter_->ApplyPose(pose); !s.ok()) return s;
+  return FollowCut();
+}
+
+absl::Status Simulation::WithdrawBlade() {
+  if (cutter_ == nullptr) return absl::OkStatus();
+  cutter_->Finish();
+  return FollowCut();
+}
+
+absl::Status Simulation::FollowCut() {
+  const std::vector<cut::MadeVertex> made = cutter_->TakeMadeVertices();
+  if (made.empty()) return absl::OkStatus();
+  if (absl::Status s = model_->SyncWithMesh(); !s.ok()) return s;
+  const std::size_t n = scene_.mesh.vertex_index_bound();
+  state_.displacement.resize(n, Eigen::Vector3d::Zero());
+  state_.velocity.resize(n, Eigen::Vector3d::Zero());
+  for (const cut::MadeVertex& m : made) {
+    Eigen::Vector3d u = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      u += m.weights[k] * state_.displacement[mesh::Index(m.from[k])];
+      v += m.weights[k] * state_.velocity[mesh::Index(m.from[k])];
+    }
+    state_.displacement[mesh::Index(m.vertex)] = u;
+    state_.velocity[mesh::Index(m.vertex)] = v;
+  }
+  if (integrator_ != nullptr) integrator_->Refresh(scene_.conditions);
+  if (scene_.time_step == 0) {
+    critical_time_step_ = fem::EstimateCriticalTimeStep(*model_);
+    time_step_ = 0.9 * critical_time_step_;
+  }
+  return absl::OkStatus();
+}
+
 void Simulation::UpdateCurrentPositions() {
   std::span<Eigen::Vector3d> current = scene_.mesh.mutable_current_positions();
   const std::span<const Eigen::Vector3d> rest = scene_.mesh.rest_positions();

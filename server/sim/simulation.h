@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "absl/status/statusor.h"
+#include "cut/cutter.h"
 #include "fem/explicit_integrator.h"
 #include "fem/tensor_mass_model.h"
 #include "sim/scene.h"
@@ -22,17 +23,29 @@ class Simulation {
   // Afterwards the mesh's current positions are rest plus displacement. O(vertices + edges).
   void Step();
 
+  // Moves the blade (see cut::Cutter): the mesh is cut where the blade has passed, the
+  // elastic model follows incrementally, and the vertices the cut made take displacement and
+  // velocity interpolated from the vertices they came from. With an automatic time step the
+  // step is re-estimated after a cut (small new tets lower the critical step).
+  // INVALID_ARGUMENT for a bad pose, which changes nothing.
+  absl::Status ApplyBladePose(const cut::BladePose& pose);
+  // The blade is withdrawn: everything it cut is opened.
+  absl::Status WithdrawBlade();
+
   const Scene& scene() const { return scene_; }
   const mesh::TetMesh& mesh() const { return scene_.mesh; }
   const fem::TensorMassModel& model() const { return *model_; }
   const fem::DynamicState& state() const { return state_; }
   double time_step() const { return time_step_; }
+  // The cutter, once a blade pose was applied (null before).
+  const cut::Cutter* cutter() const { return cutter_.get(); }
   // 2 / omega_max of the model as built (see fem::EstimateCriticalTimeStep).
   double critical_time_step() const { return critical_time_step_; }
 
  private:
   explicit Simulation(Scene scene) : scene_(std::move(scene)) {}
   void UpdateCurrentPositions();
+  absl::Status FollowCut();
 
   Scene scene_;  // owns the mesh the model points to; Simulation is not movable
   std::unique_ptr<fem::TensorMassModel> model_;
@@ -40,6 +53,7 @@ class Simulation {
   fem::DynamicState state_;
   double time_step_ = 0;
   double critical_time_step_ = 0;
+  std::unique_ptr<cut::Cutter> cutter_;
 };
 
 }  // namespace kerf::sim
