@@ -5,13 +5,16 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <random>
 
 #include "mesh/boundary_surface.h"
 #include "mesh/box_lattice.h"
 #include "mesh/connected_components.h"
+#include "mesh/io/mesh_file.h"
 #include "mesh/mesh_validation.h"
+#include "support/shared_meshes.h"
 #include "support/status_message.h"
 
 namespace kerf::cut {
@@ -171,50 +174,93 @@ TEST(Cutter, CutsTheDeformedShapeAndPlacesRestPositionsByTheSameCoordinates) {
 namespace kerf::cut {
 namespace {
 
-// Random blades wandering through the bar, with reversals and hesitations: the mesh must be
-// valid, conforming and keep its volume after every pose, and whatever the blade did, the
-// cut never loses material. 200 paths of 50 poses: 10^4 poses.
-TEST(Cutter, RandomPathsKeepEveryPropertyAfterEveryPose) {
-  std::mt19937 random(17);
+struct RandomCutTotals {
+  std::size_t poses = 0, cut_tets = 0, dropped = 0;
+};
+
+// Random blades wandering through `make_mesh()`'s mesh (of about `size` across, starting
+// around `low`), with reversals and hesitations: the mesh must be valid, conforming and keep
+// its volume after every pose.
+RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
+                               const Eigen::Vector3d& low, double size, int paths, int poses,
+                               std::uint32_t seed) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0, 1);
-  std::size_t cut_tets = 0, dropped = 0, poses = 0;
-  for (int path = 0; path < 200; ++path) {
-    TetMesh m = Bar();
+  BladeLimits limits;
+  limits.max_length = size;
+  limits.max_step = 0.1 * size;
+  limits.max_speed = 1e9;
+  RandomCutTotals totals;
+  for (int path = 0; path < paths; ++path) {
+    TetMesh m = make_mesh();
     const double volume = RestVolume(m);
-    Cutter cutter = *Cutter::Create(&m, 0.01);
-    // A blade of 15-35 mm starting somewhere around the bar, pointing roughly downward.
-    Eigen::Vector3d tip(0.06 * unit(random), 0.03 * unit(random) - 0.005, 0.025 * unit(random));
+    Cutter cutter = *Cutter::Create(&m, 0.15 * size, limits);
+    // A blade a quarter to half the mesh's size, pointing roughly downward.
+    Eigen::Vector3d tip = low + size * Eigen::Vector3d(unit(random), unit(random), unit(random));
     Eigen::Vector3d along(unit(random) - 0.5, unit(random) - 0.5, 1.5);
-    Eigen::Vector3d heel = tip + (0.015 + 0.02 * unit(random)) * along.normalized();
+    Eigen::Vector3d heel = tip + size * (0.25 + 0.25 * unit(random)) * along.normalized();
     Eigen::Vector3d velocity(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5);
     double time = 0;
-    for (int k = 0; k < 50; ++k, ++poses) {
-      ASSERT_TRUE(cutter.ApplyPose({time, tip, heel}).ok());
-      ASSERT_TRUE(mesh::FindMeshDefects(m).empty())
-          << "path " << path << " pose " << k << ": " << mesh::ValidateMesh(m);
-      ASSERT_NEAR(RestVolume(m), volume, 1e-12 * volume) << "path " << path << " pose " << k;
+    for (int k = 0; k < poses; ++k, ++totals.poses) {
+      EXPECT_TRUE(cutter.ApplyPose({time, tip, heel}).ok());
+      const std::vector<mesh::MeshDefect> defects = mesh::FindMeshDefects(m);
+      if (!defects.empty() || std::abs(RestVolume(m) - volume) > 1e-12 * volume) {
+        ADD_FAILURE() << "path " << path << " pose " << k << ": " << mesh::ValidateMesh(m)
+                      << ", volume " << RestVolume(m) << " of " << volume;
+        return totals;
+      }
       time += 0.01;
       const double what = unit(random);
       if (what < 0.1) continue;              // hesitate
       if (what < 0.2) velocity = -velocity;  // reverse
       if (what < 0.3) velocity += Eigen::Vector3d(unit(random) - 0.5, unit(random) - 0.5, 0);
-      const Eigen::Vector3d step = 0.0015 * velocity.normalized();
-      const Eigen::Vector3d twist =
-          0.0005 * Eigen::Vector3d(unit(random) - 0.5, unit(random) - 0.5, 0);
+      const Eigen::Vector3d step = 0.025 * size * velocity.normalized();
       tip += step;
-      heel += step + twist;
+      heel += step + 0.008 * size * Eigen::Vector3d(unit(random) - 0.5, unit(random) - 0.5, 0);
     }
     cutter.Finish();
-    ASSERT_TRUE(mesh::FindMeshDefects(m).empty())
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty())
         << "path " << path << ": " << mesh::ValidateMesh(m);
-    ASSERT_NEAR(RestVolume(m), volume, 1e-12 * volume);
-    cut_tets += cutter.statistics().cut_tets;
-    dropped += cutter.statistics().dropped_hits;
+    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    totals.cut_tets += cutter.statistics().cut_tets;
+    totals.dropped += cutter.statistics().dropped_hits;
   }
-  std::printf("random paths: %zu poses, %zu tets cut, %zu hits dropped\n", poses, cut_tets,
-              dropped);
-  EXPECT_EQ(poses, 10000u);
-  EXPECT_GT(cut_tets, 0u);
+  return totals;
+}
+
+TEST(Cutter, RandomPathsThroughTheLatticeKeepEveryPropertyAfterEveryPose) {
+  // 200 paths of 50 poses: 10^4 poses.
+  const RandomCutTotals totals =
+      RunRandomPaths(Bar, Eigen::Vector3d(0, -0.005, 0), 0.06, 200, 50, 17);
+  std::printf("random paths, lattice: %zu poses, %zu tets cut, %zu hits dropped\n", totals.poses,
+              totals.cut_tets, totals.dropped);
+  EXPECT_EQ(totals.poses, 10000u);
+  EXPECT_GT(totals.cut_tets, 0u);
+}
+
+TEST(Cutter, RandomPathsThroughTheLiverKeepEveryPropertyAfterEveryPose) {
+  const std::string path = kerf::testing::SharedMeshPath("liver.msh");
+  if (path.empty()) GTEST_SKIP() << "shared/meshes is not beside the repo";
+  const TetMesh liver = *mesh::ReadMeshFile(path);
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
+  for (const VertexId v : liver.vertices()) {
+    low = low.cwiseMin(liver.rest_position(v));
+    high = high.cwiseMax(liver.rest_position(v));
+  }
+  const auto copy = [&] {
+    TetMesh m;
+    for (std::uint32_t i = 0; i < liver.vertex_index_bound(); ++i) {
+      m.AddVertex(liver.rest_positions()[i]);
+    }
+    for (const mesh::TetId t : liver.tets()) (void)m.AddTet(liver.tet(t));
+    return m;
+  };
+  // 100 paths of 50 poses: 5,000 poses.
+  const RandomCutTotals totals = RunRandomPaths(copy, low, (high - low).maxCoeff(), 100, 50, 23);
+  std::printf("random paths, liver: %zu poses, %zu tets cut, %zu hits dropped\n", totals.poses,
+              totals.cut_tets, totals.dropped);
+  EXPECT_EQ(totals.poses, 5000u);
+  EXPECT_GT(totals.cut_tets, 0u);
 }
 
 }  // namespace
