@@ -20,19 +20,6 @@ namespace {
 
 constexpr absl::string_view kUsage = "kerf cut MESH --path PATH.json --out OUT.vtu [--json]";
 
-double MeanEdgeLength(const mesh::TetMesh& m) {
-  double sum = 0;
-  std::size_t count = 0;
-  for (const mesh::TetId t : m.tets()) {
-    const mesh::TetVertices& v = m.tet(t);
-    for (const auto& [i, j] : mesh::kTetEdges) {
-      sum += (m.current_position(v[i]) - m.current_position(v[j])).norm();
-      ++count;
-    }
-  }
-  return count ? sum / static_cast<double>(count) : 1;
-}
-
 // The mesh of a scene (an embedded name or a .textproto file) in its initial state, or of a
 // mesh file.
 absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name) {
@@ -50,23 +37,7 @@ absl::StatusOr<mesh::TetMesh> MeshOfScene(sim::Scene scene) {
   absl::StatusOr<std::unique_ptr<sim::Simulation>> simulation =
       sim::Simulation::Create(std::move(scene));
   if (!simulation.ok()) return simulation.status();
-  const mesh::TetMesh& source = (*simulation)->mesh();
-  mesh::TetMesh copy;
-  for (std::uint32_t i = 0; i < source.vertex_index_bound(); ++i) {
-    copy.AddVertex(source.rest_positions()[i], source.current_positions()[i]);
-  }
-  for (const mesh::TetId t : source.tets()) (void)copy.AddTet(source.tet(t));
-  return copy;
-}
-
-double MeshDiagonal(const mesh::TetMesh& m) {
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-  Eigen::Vector3d high = -low;
-  for (const mesh::VertexId v : m.vertices()) {
-    low = low.cwiseMin(m.current_position(v));
-    high = high.cwiseMax(m.current_position(v));
-  }
-  return m.vertex_count() ? (high - low).norm() : 0;
+  return (*simulation)->mesh();  // a copy, in the scene's initial state
 }
 
 cut::BladeLimits LimitsForMeshSize(double diagonal) {
@@ -85,7 +56,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_path(std::string(path_name));
   report.set_poses(static_cast<std::uint32_t>(poses.size()));
   report.set_tets_before(static_cast<std::uint32_t>(m->tet_count()));
-  absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(m, MeanEdgeLength(*m));
+  absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(m, mesh::MeanEdgeLength(*m));
   if (!cutter.ok()) return cutter.status();
   for (std::size_t i = 0; i < poses.size(); ++i) {
     if (absl::Status s = cutter->ApplyPose(poses[i]); !s.ok()) {
@@ -149,8 +120,9 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   const absl::string_view path_file = (**path_arg)[0];
   absl::StatusOr<std::string> path_text = mesh::ReadTextFile(path_file);
   if (!path_text.ok()) return path_text.status();
-  absl::StatusOr<std::vector<cut::BladePose>> poses =
-      cut::ParseBladePathJson(*path_text, path_file, LimitsForMeshSize(MeshDiagonal(*m)));
+  absl::StatusOr<std::vector<cut::BladePose>> poses = cut::ParseBladePathJson(
+      *path_text, path_file,
+      LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()));
   if (!poses.ok()) return poses.status();
   const std::uint32_t original_vertices = m->vertex_index_bound();
   std::vector<mesh::TetId> source_tets;

@@ -28,8 +28,6 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* mesh,
 
 // The blade limits for a mesh of this size (bounding-box diagonal, in its length unit).
 cut::BladeLimits LimitsForMeshSize(double diagonal);
-// The bounding-box diagonal of the current positions.
-double MeshDiagonal(const mesh::TetMesh& mesh);
 
 // A copy of a scene's mesh in the scene's initial state (rest, or the static solution of a
 // STATIC scene).

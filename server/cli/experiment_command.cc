@@ -7,6 +7,7 @@
 #include "cli/json_output.h"
 #include "embedded_text.h"
 #include "kerf/v1/cut_report.pb.h"
+#include "mesh/mesh_quality.h"
 
 namespace kerf::cli {
 namespace {
@@ -26,8 +27,8 @@ absl::StatusOr<std::string> LatticeCut(bool json) {
     absl::StatusOr<mesh::TetMesh> m = MeshOfScene(*std::move(scene));
     if (!m.ok()) return m.status();
     const std::optional<absl::string_view> json_path = FindEmbeddedText(EmbeddedBladePaths(), path);
-    absl::StatusOr<std::vector<cut::BladePose>> poses =
-        cut::ParseBladePathJson(*json_path, path, LimitsForMeshSize(MeshDiagonal(*m)));
+    absl::StatusOr<std::vector<cut::BladePose>> poses = cut::ParseBladePathJson(
+        *json_path, path, LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()));
     if (!poses.ok()) return poses.status();
     absl::StatusOr<kerf::v1::CutReport> report = CutAlongPath(&*m, *poses, path);
     if (!report.ok()) return report.status();

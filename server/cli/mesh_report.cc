@@ -36,15 +36,9 @@ kerf::v1::MeshReport MakeMeshReport(const mesh::TetMesh& mesh, absl::string_view
     report.add_defects(defects[i].message);
   }
 
-  if (mesh.vertex_count() > 0) {
-    Eigen::Vector3d low = mesh.rest_position(*mesh.vertices().begin()), high = low;
-    for (const mesh::VertexId v : mesh.vertices()) {
-      low = low.cwiseMin(mesh.rest_position(v));
-      high = high.cwiseMax(mesh.rest_position(v));
-    }
-    SetVector(low, report.mutable_bounding_box()->mutable_min());
-    SetVector(high, report.mutable_bounding_box()->mutable_max());
-  }
+  const mesh::Bounds bounds = mesh::MeasureBounds(mesh);
+  SetVector(bounds.low, report.mutable_bounding_box()->mutable_min());
+  SetVector(bounds.high, report.mutable_bounding_box()->mutable_max());
 
   const mesh::MeshQuality quality = mesh::MeasureMeshQuality(mesh);
   report.set_volume(quality.total_volume);

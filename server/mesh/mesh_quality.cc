@@ -7,6 +7,31 @@
 
 namespace kerf::mesh {
 
+Bounds MeasureBounds(const TetMesh& mesh, bool current) {
+  Bounds bounds;
+  bool first = true;
+  for (const VertexId v : mesh.vertices()) {
+    const Eigen::Vector3d& p = current ? mesh.current_position(v) : mesh.rest_position(v);
+    bounds.low = first ? p : Eigen::Vector3d(bounds.low.cwiseMin(p));
+    bounds.high = first ? p : Eigen::Vector3d(bounds.high.cwiseMax(p));
+    first = false;
+  }
+  return bounds;
+}
+
+double MeanEdgeLength(const TetMesh& mesh) {
+  double sum = 0;
+  std::size_t count = 0;
+  for (const TetId t : mesh.tets()) {
+    const TetVertices& v = mesh.tet(t);
+    for (const auto& [i, j] : kTetEdges) {
+      sum += (mesh.current_position(v[i]) - mesh.current_position(v[j])).norm();
+      ++count;
+    }
+  }
+  return count ? sum / static_cast<double>(count) : 0;
+}
+
 MeshQuality MeasureMeshQuality(const TetMesh& mesh, double sliver_angle_deg) {
   MeshQuality q;
   if (mesh.tet_count() == 0) return q;

@@ -29,6 +29,19 @@ struct MeshQuality {
   std::array<std::size_t, 8> min_dihedral_histogram{};
 };
 
+// The smallest box holding the live vertices, on rest or current positions; zero for an
+// empty mesh. O(vertices).
+struct Bounds {
+  Eigen::Vector3d low = Eigen::Vector3d::Zero();
+  Eigen::Vector3d high = Eigen::Vector3d::Zero();
+  double diagonal() const { return (high - low).norm(); }
+};
+Bounds MeasureBounds(const TetMesh& mesh, bool current = false);
+
+// The mean length of the live tets' edges (each counted once per tet), on current
+// positions; 0 for a mesh with no tets. O(tets).
+double MeanEdgeLength(const TetMesh& mesh);
+
 // Measures every live tet on rest positions. All fields are zero for a mesh with no tets.
 // O(tets).
 MeshQuality MeasureMeshQuality(const TetMesh& mesh,

@@ -10,6 +10,7 @@
 #include "google/protobuf/text_format.h"
 #include "mesh/box_lattice.h"
 #include "mesh/io/mesh_file.h"
+#include "mesh/mesh_quality.h"
 
 namespace kerf::sim {
 namespace {
@@ -32,12 +33,7 @@ absl::StatusOr<std::vector<mesh::VertexId>> Select(const mesh::TetMesh& mesh,
                                                    const kerf::v1::VertexSelection& selection,
                                                    const std::string& field) {
   // Positions within a billionth of the mesh's size of a boundary count as on it.
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
-  for (const mesh::VertexId v : mesh.vertices()) {
-    low = low.cwiseMin(mesh.rest_position(v));
-    high = high.cwiseMax(mesh.rest_position(v));
-  }
-  const double tolerance = 1e-9 * (high - low).norm();
+  const double tolerance = 1e-9 * mesh::MeasureBounds(mesh).diagonal();
   std::vector<mesh::VertexId> selected;
   switch (selection.selection_case()) {
     case kerf::v1::VertexSelection::kBox: {

@@ -1,6 +1,7 @@
 #include "sim/simulation.h"
 
 #include "fem/static_solver.h"
+#include "mesh/mesh_quality.h"
 
 namespace kerf::sim {
 
@@ -40,15 +41,8 @@ void Simulation::Step() {
 absl::Status Simulation::ApplyBladePose(const cut::BladePose& pose) {
   if (cutter_ == nullptr) {
     // The spatial index's cells are about an edge long.
-    double edges = 0, count = 0;
-    for (const mesh::TetId t : scene_.mesh.tets()) {
-      const mesh::TetVertices& v = scene_.mesh.tet(t);
-      for (const auto& [i, j] : mesh::kTetEdges) {
-        edges += (scene_.mesh.rest_position(v[i]) - scene_.mesh.rest_position(v[j])).norm();
-        ++count;
-      }
-    }
-    absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(&scene_.mesh, edges / count);
+    absl::StatusOr<cut::Cutter> cutter =
+        cut::Cutter::Create(&scene_.mesh, mesh::MeanEdgeLength(scene_.mesh));
     if (!cutter.ok()) return cutter.status();
     cutter_ = std::make_unique<cut::Cutter>(*std::move(cutter));
   } else if (absl::Status s = cutter_->MeshDeformed(); !s.ok()) {

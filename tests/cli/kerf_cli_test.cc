@@ -130,8 +130,8 @@ TEST(KerfCli, CutWritesTheCutMeshWithItsSourcesAndReports) {
     {"time": 0.01, "tip": [0.0337, 0.005, -0.005], "heel": [0.0337, 0.005, 0.025]},
     {"time": 0.02, "tip": [0.0337, 0.015, -0.005], "heel": [0.0337, 0.015, 0.025]},
     {"time": 0.03, "tip": [0.0337, 0.025, -0.005], "heel": [0.0337, 0.025, 0.025]}]})";
-  const CliResult run = Kerf(absl::StrCat("cut ", dir, "/bar.msh --path ", dir,
-                                          "/path.json --out ", dir, "/cut.vtu --json"));
+  const CliResult run = Kerf(absl::StrCat("cut ", dir, "/bar.msh --path ", dir, "/path.json --out ",
+                                          dir, "/cut.vtu --json"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   kerf::v1::CutReport report;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok()) << run.output;
@@ -144,8 +144,8 @@ TEST(KerfCli, CutWritesTheCutMeshWithItsSourcesAndReports) {
   EXPECT_TRUE(report.valid());
   std::ifstream vtu(dir + "/cut.vtu");
   const std::string text((std::istreambuf_iterator<char>(vtu)), {});
-  for (const char* array : {"Name=\"rest_position\"", "Name=\"source_vertex\"",
-                            "Name=\"source_tet\""}) {
+  for (const char* array :
+       {"Name=\"rest_position\"", "Name=\"source_vertex\"", "Name=\"source_tet\""}) {
     EXPECT_THAT(text, HasSubstr(array));
   }
   const CliResult info = Kerf(absl::StrCat("mesh info ", dir, "/cut.vtu --json"));
@@ -159,8 +159,8 @@ TEST(KerfCli, CutRefusesABadPathNamingThePose) {
   std::ofstream(dir + "/jump.json") << R"({"poses": [
     {"time": 0, "tip": [0.5, -1, -1], "heel": [0.5, -1, 3]},
     {"time": 1, "tip": [0.5, 900, -1], "heel": [0.5, 900, 3]}]})";
-  const CliResult run = Kerf(absl::StrCat("cut ", dir, "/small.msh --path ", dir,
-                                          "/jump.json --out ", dir, "/x.vtu"));
+  const CliResult run = Kerf(
+      absl::StrCat("cut ", dir, "/small.msh --path ", dir, "/jump.json --out ", dir, "/x.vtu"));
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_THAT(run.output, HasSubstr("jump.json: pose 1: the blade jumps 901 m in one pose"));
 }

@@ -13,6 +13,7 @@
 #include "mesh/box_lattice.h"
 #include "mesh/connected_components.h"
 #include "mesh/io/mesh_file.h"
+#include "mesh/mesh_quality.h"
 #include "mesh/mesh_validation.h"
 #include "support/shared_meshes.h"
 #include "support/status_message.h"
@@ -242,21 +243,11 @@ TEST(Cutter, RandomPathsThroughTheLiverKeepEveryPropertyAfterEveryPose) {
   const std::string path = kerf::testing::SharedMeshPath("liver.msh");
   if (path.empty()) GTEST_SKIP() << "shared/meshes is not beside the repo";
   const TetMesh liver = *mesh::ReadMeshFile(path);
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
-  for (const VertexId v : liver.vertices()) {
-    low = low.cwiseMin(liver.rest_position(v));
-    high = high.cwiseMax(liver.rest_position(v));
-  }
-  const auto copy = [&] {
-    TetMesh m;
-    for (std::uint32_t i = 0; i < liver.vertex_index_bound(); ++i) {
-      m.AddVertex(liver.rest_positions()[i]);
-    }
-    for (const mesh::TetId t : liver.tets()) (void)m.AddTet(liver.tet(t));
-    return m;
-  };
+  const mesh::Bounds bounds = mesh::MeasureBounds(liver);
+  const auto copy = [&] { return liver; };
   // 100 paths of 50 poses: 5,000 poses.
-  const RandomCutTotals totals = RunRandomPaths(copy, low, (high - low).maxCoeff(), 100, 50, 23);
+  const RandomCutTotals totals =
+      RunRandomPaths(copy, bounds.low, (bounds.high - bounds.low).maxCoeff(), 100, 50, 23);
   std::printf("random paths, liver: %zu poses, %zu tets cut, %zu hits dropped\n", totals.poses,
               totals.cut_tets, totals.dropped);
   EXPECT_EQ(totals.poses, 5000u);

@@ -260,6 +260,19 @@ void ExpectCrackedSplitKeepsTheProperties(CutTet& t, const TetSplit& split,
   EXPECT_NEAR(crack_one_side, crack_other_side, 1e-12 * surface);
 }
 
+// The cut point of edge (i, j) if it is cut, else a new point on it (where a blade's plane
+// would cross it).
+Vector3d CutPointOrNew(const CutTet& t, const std::array<Vector3d, 4>& x, int i, int j,
+                       std::mt19937& random) {
+  for (const EdgeCut& cut : t.cuts) {
+    if ((cut.corner_a == i && cut.corner_b == j) || (cut.corner_a == j && cut.corner_b == i)) {
+      return t.mesh.rest_position(cut.near_a);
+    }
+  }
+  std::uniform_real_distribution<double> fraction(0.2, 0.8);
+  return x[i] + fraction(random) * (x[j] - x[i]);
+}
+
 // A point inside triangle (a, b, c), away from its edges.
 Vector3d InsideTriangle(const Vector3d& a, const Vector3d& b, const Vector3d& c,
                         std::mt19937& random) {
@@ -304,15 +317,7 @@ TEST(SplitCrackedTet, CaseTwoEdgesInAllTwelveOrientations) {
           CutTet t = MakeCutTet(x, edges, random);
           // A blade plane cuts ab, ac and (beyond the crack's end) ad; the tip path runs near
           // that plane across faces abd and acd.
-          const auto cut_point = [&](int i, int j) {
-            for (const EdgeCut& cut : t.cuts) {
-              if ((cut.corner_a == i && cut.corner_b == j) ||
-                  (cut.corner_a == j && cut.corner_b == i)) {
-                return t.mesh.rest_position(cut.near_a);
-              }
-            }
-            return Vector3d(x[i] + fraction(random) * (x[j] - x[i]));
-          };
+          const auto cut_point = [&](int i, int j) { return CutPointOrNew(t, x, i, j, random); };
           const Vector3d ab = cut_point(a, b), ac = cut_point(a, c), ad = cut_point(a, d);
           // Each face point is moved off the plane within its face, so that the crack is not
           // flat, as a swept (ruled) surface is not.
@@ -350,15 +355,7 @@ TEST(SplitCrackedTet, CaseThreeEdgesInAllTwelveOrientations) {
       CutTet t = MakeCutTet(x, edges, random);
       // A blade plane separating {a, c} from {b, d} crosses ab, bc, cd and ad; the crack
       // stops before ad, its tip path running near the plane across faces abd and acd.
-      const auto cut_point = [&](int i, int j) {
-        for (const EdgeCut& cut : t.cuts) {
-          if ((cut.corner_a == i && cut.corner_b == j) ||
-              (cut.corner_a == j && cut.corner_b == i)) {
-            return t.mesh.rest_position(cut.near_a);
-          }
-        }
-        return Vector3d(x[i] + fraction(random) * (x[j] - x[i]));
-      };
+      const auto cut_point = [&](int i, int j) { return CutPointOrNew(t, x, i, j, random); };
       const Vector3d ab = cut_point(a, b), cd = cut_point(c, d), ad = cut_point(a, d);
       const VertexId on_abd = t.mesh.AddVertex(0.7 * (ab + fraction(random) * (ad - ab)) +
                                                0.3 * InsideTriangle(x[a], x[b], x[d], random));
