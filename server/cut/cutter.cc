@@ -68,7 +68,18 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
   absl::flat_hash_set<FaceKey, FaceKeyHash> tested_faces;
   std::vector<EdgeKey> new_edges;
   std::vector<FaceKey> new_faces;
+  // The grid lists the tets in the cells the swept surface's box covers; keep those whose own
+  // box meets it (the blade can only be inside those, too).
   std::vector<TetId> near = grid_.Candidates(low, high);
+  std::erase_if(near, [&](TetId t) {
+    const mesh::TetVertices& v = mesh_->tet(t);
+    Eigen::Vector3d lo = mesh_->current_position(v[0]), hi = lo;
+    for (int i = 1; i < 4; ++i) {
+      lo = lo.cwiseMin(mesh_->current_position(v[i]));
+      hi = hi.cwiseMax(mesh_->current_position(v[i]));
+    }
+    return (lo.array() > high.array()).any() || (hi.array() < low.array()).any();
+  });
   for (const TetId t : near) {
     const mesh::TetVertices v = mesh_->tet(t);
     for (const auto& [i, j] : mesh::kTetEdges) {

@@ -19,8 +19,10 @@ struct BoxLatticeSpec {
 
 // Each cube is split into six tets around its diagonal from the low corner to the high one
 // (the Kuhn split). Every cube is split the same way, so the face diagonals of neighbouring
-// cubes agree and the mesh is conforming. Vertex (i, j, k) has id i + (nx+1) (j + (ny+1) k);
-// all tets are positively oriented. `4 6 4` gives the paper's 576 tets.
+// cubes agree and the mesh is conforming. All tets are positively oriented. `4 6 4` gives the
+// paper's 576 tets. Vertices and cubes are numbered along a Z-order (Morton) curve, so that
+// what is close in space is close in memory; the cube at the origin comes first, its six tets
+// being tets 0-5, and vertex 0 is the corner at the origin.
 // INVALID_ARGUMENT naming the field for a count or size out of range.
 absl::StatusOr<TetMesh> MakeBoxLattice(const BoxLatticeSpec& spec);
 

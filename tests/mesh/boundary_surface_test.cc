@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "mesh/box_lattice.h"
+#include "support/find_vertex.h"
 
 namespace kerf::mesh {
 namespace {
@@ -50,7 +51,7 @@ TEST(ExtractBoundarySurface, RemovingATetExposesItsInteriorFaces) {
   TetMesh mesh = *MakeBoxLattice(spec);
   const std::size_t before = ExtractBoundarySurface(mesh).size();
   // A tet of the middle cube has four interior faces, which become boundary.
-  const TetId middle{6 * (1 + 3 * (1 + 3 * 1))};
+  const TetId middle = kerf::testing::TetWithCentroidIn(mesh, {1, 1, 1}, {2, 2, 2});
   ASSERT_TRUE(mesh.RemoveTet(middle).ok());
   EXPECT_EQ(ExtractBoundarySurface(mesh).size(), before + 4);
 }

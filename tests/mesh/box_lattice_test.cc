@@ -4,6 +4,7 @@
 
 #include "mesh/boundary_surface.h"
 #include "mesh/mesh_validation.h"
+#include "support/find_vertex.h"
 #include "support/status_message.h"
 
 namespace kerf::mesh {
@@ -55,7 +56,7 @@ TEST(MakeBoxLattice, PhysicalSizeScalesTheBox) {
   spec.cells_z = 1;
   spec.size = {5e-2, 1e-2, 1e-2};  // metres
   const TetMesh mesh = *MakeBoxLattice(spec);
-  EXPECT_EQ(mesh.rest_position(VertexId{5}), Eigen::Vector3d(5e-2, 0, 0));
+  kerf::testing::VertexAt(mesh, {5e-2, 0, 0});  // the far corner is exactly at the size
   double volume = 0;
   for (const TetId t : mesh.tets()) volume += RestVolume(mesh, t);
   EXPECT_NEAR(volume, 5e-6, 1e-18);
