@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
+#include "mesh/mesh_quality.h"
 
 namespace kerf::cut {
 namespace {
@@ -72,13 +73,8 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
   // box meets it (the blade can only be inside those, too).
   std::vector<TetId> near = grid_.Candidates(low, high);
   std::erase_if(near, [&](TetId t) {
-    const mesh::TetVertices& v = mesh_->tet(t);
-    Eigen::Vector3d lo = mesh_->current_position(v[0]), hi = lo;
-    for (int i = 1; i < 4; ++i) {
-      lo = lo.cwiseMin(mesh_->current_position(v[i]));
-      hi = hi.cwiseMax(mesh_->current_position(v[i]));
-    }
-    return (lo.array() > high.array()).any() || (hi.array() < low.array()).any();
+    const mesh::Bounds box = mesh::MeasureTetBounds(*mesh_, t, /*current=*/true);
+    return (box.low.array() > high.array()).any() || (box.high.array() < low.array()).any();
   });
   for (const TetId t : near) {
     const mesh::TetVertices v = mesh_->tet(t);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "mesh/mesh_quality.h"
 
 namespace kerf::cut {
 
@@ -37,17 +38,12 @@ TetGrid::Cell TetGrid::CellOf(const Eigen::Vector3d& p) const {
 }
 
 void TetGrid::Register(TetId t) {
-  const mesh::TetVertices& v = mesh_->tet(t);
-  Eigen::Vector3d low = mesh_->current_position(v[0]), high = low;
-  for (int i = 1; i < 4; ++i) {
-    low = low.cwiseMin(mesh_->current_position(v[i]));
-    high = high.cwiseMax(mesh_->current_position(v[i]));
-  }
+  const mesh::Bounds box = mesh::MeasureTetBounds(*mesh_, t, /*current=*/true);
   if (ranges_.size() <= Index(t)) ranges_.resize(Index(t) + 1);
   CellRange& range = ranges_[Index(t)];
   // A corner is within margin of its reference now and will stay within margin of it until
   // the reference moves, so twice the margin covers it until then.
-  range = {CellOf(low.array() - 2 * margin_), CellOf(high.array() + 2 * margin_), true};
+  range = {CellOf(box.low.array() - 2 * margin_), CellOf(box.high.array() + 2 * margin_), true};
   for (std::int32_t x = range.low[0]; x <= range.high[0]; ++x) {
     for (std::int32_t y = range.low[1]; y <= range.high[1]; ++y) {
       for (std::int32_t z = range.low[2]; z <= range.high[2]; ++z) cells_[{x, y, z}].push_back(t);

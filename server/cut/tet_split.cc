@@ -15,6 +15,18 @@ namespace {
 using mesh::Index;
 using mesh::VertexId;
 
+// The key of a vertex for the diagonal rule: an original vertex's id; for the two copies of a
+// cut point, the smaller of their ids, offset to sort after every original vertex, so both
+// copies (and so both sides of the cut, and every neighbour) compare alike.
+std::uint64_t DiagonalKey(VertexId v, const std::vector<EdgeCut>& cuts) {
+  for (const EdgeCut& cut : cuts) {
+    if (v == cut.near_a || v == cut.near_b) {
+      return (std::uint64_t{1} << 32) + std::min(Index(cut.near_a), Index(cut.near_b));
+    }
+  }
+  return Index(v);
+}
+
 // Which vertex of a quad (given in cyclic order) its splitting diagonal passes through.
 using DiagonalChooser = std::function<VertexId(const std::array<VertexId, 4>&)>;
 
@@ -319,15 +331,6 @@ TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<Edg
     split.cut_case = CutCase::kCrackThreeEdges;
   }
   return split;
-}
-
-std::uint64_t DiagonalKey(VertexId v, const std::vector<EdgeCut>& cuts) {
-  for (const EdgeCut& cut : cuts) {
-    if (v == cut.near_a || v == cut.near_b) {
-      return (std::uint64_t{1} << 32) + std::min(Index(cut.near_a), Index(cut.near_b));
-    }
-  }
-  return Index(v);
 }
 
 TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts) {

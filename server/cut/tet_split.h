@@ -65,8 +65,4 @@ TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<Edg
                          const std::array<FacePoint, 2>& face_points,
                          const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
-// The key of a vertex for the diagonal rule. Original vertices use their id; the two copies
-// of a cut point use the smaller of their ids, offset to sort after every original vertex.
-std::uint64_t DiagonalKey(mesh::VertexId v, const std::vector<EdgeCut>& cuts);
-
 }  // namespace kerf::cut

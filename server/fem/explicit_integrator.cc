@@ -39,9 +39,14 @@ void ExplicitIntegrator::Step(double dt, DynamicState* state) {
   state->velocity.resize(n, Eigen::Vector3d::Zero());
   const double alpha = model_->material().mass_damping;
   const double beta = model_->material().stiffness_damping;
-  for (std::size_t i = 0; i < n; ++i)
-    damped_u_[i] = state->displacement[i] + beta * state->velocity[i];
-  model_->MultiplyStiffness(damped_u_, elastic_);
+  if (beta == 0) {
+    model_->MultiplyStiffness(state->displacement, elastic_);  // no u + beta v to form
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      damped_u_[i] = state->displacement[i] + beta * state->velocity[i];
+    }
+    model_->MultiplyStiffness(damped_u_, elastic_);
+  }
   const double keep = 1 - dt * alpha;
   for (std::size_t i = 0; i < n; ++i) {
     Eigen::Vector3d& v = state->velocity[i];

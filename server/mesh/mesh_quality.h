@@ -37,6 +37,8 @@ struct Bounds {
   double diagonal() const { return (high - low).norm(); }
 };
 Bounds MeasureBounds(const TetMesh& mesh, bool current = false);
+// The same for the corners of one live tet. O(1).
+Bounds MeasureTetBounds(const TetMesh& mesh, TetId t, bool current = false);
 
 // The mean length of the live tets' edges (each counted once per tet), on current
 // positions; 0 for a mesh with no tets. O(tets).

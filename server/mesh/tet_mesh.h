@@ -147,7 +147,6 @@ class TetMesh {
   // --- Changes -------------------------------------------------------------------------------
 
   const MeshChangeLog& change_log() const { return change_log_; }
-  MeshChangeLog& mutable_change_log() { return change_log_; }
 
  private:
   std::vector<Eigen::Vector3d> rest_;

@@ -1,7 +1,6 @@
 // Runs the real kerf binary as a user would and checks its output and exit status.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <fstream>
@@ -12,26 +11,18 @@
 #include "google/protobuf/util/json_util.h"
 #include "kerf/v1/cut_report.pb.h"
 #include "kerf/v1/mesh_report.pb.h"
+#include "support/run_command.h"
 #include "support/shared_meshes.h"
 
 namespace {
 
 using ::testing::HasSubstr;
 
-struct CliResult {
-  int exit_code;
-  std::string output;  // stdout and stderr together
-};
+using CliResult = kerf::testing::CommandResult;
 
+// Runs kerf with these arguments; the output holds stdout and stderr together.
 CliResult Kerf(const std::string& args) {
-  const std::string command = absl::StrCat(KERF_BINARY, " ", args, " 2>&1");
-  FILE* pipe = popen(command.c_str(), "r");
-  EXPECT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return kerf::testing::RunCommand(absl::StrCat(KERF_BINARY, " ", args, " 2>&1"));
 }
 
 // The JSON that `mesh info --json` printed, parsed back with the proto's field names.

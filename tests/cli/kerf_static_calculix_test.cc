@@ -3,7 +3,6 @@
 // gravity, and the shared liver under gravity with one end held. Every node's displacement
 // must agree to 1e-6 of the largest displacement.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <Eigen/Geometry>
 #include <cstdio>
@@ -19,6 +18,7 @@
 #include "mesh/boundary_surface.h"
 #include "mesh/box_lattice.h"
 #include "mesh/io/mesh_file.h"
+#include "support/run_command.h"
 #include "support/shared_meshes.h"
 
 namespace {
@@ -28,13 +28,9 @@ using kerf::mesh::VertexId;
 using Displacements = std::map<std::int64_t, Eigen::Vector3d>;
 
 std::string Run(const std::string& command, int* exit_code) {
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
-  const int status = pclose(pipe);
-  *exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return output;
+  const kerf::testing::CommandResult result = kerf::testing::RunCommand(command);
+  *exit_code = result.exit_code;
+  return result.output;
 }
 
 struct Problem {
