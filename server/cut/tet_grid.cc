@@ -1,16 +1,34 @@
 #include "cut/tet_grid.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <limits>
 
 #include "absl/strings/str_cat.h"
 #include "mesh/mesh_quality.h"
 
 namespace kerf::cut {
+namespace {
 
 using mesh::Index;
 using mesh::TetId;
 using mesh::VertexId;
+
+// At most this many cells per tet (and at least kMinCells in all), so that a mesh with a few
+// far-flung vertices does not make a huge grid.
+constexpr double kMaxCellsPerTet = 1;
+constexpr double kMinCells = 4096;
+
+// `value` as a float no larger (or, with `up`, no smaller) than it.
+float RoundOutwards(double value, bool up) {
+  const float rounded = static_cast<float>(value);
+  if (up ? rounded >= value : rounded <= value) return rounded;
+  return std::nextafter(rounded, up ? std::numeric_limits<float>::infinity()
+                                    : -std::numeric_limits<float>::infinity());
+}
+
+}  // namespace
 
 absl::StatusOr<TetGrid> TetGrid::Build(const mesh::TetMesh& mesh, double cell_size, double margin) {
   if (!(cell_size > 0) || !std::isfinite(cell_size)) {
@@ -21,7 +39,27 @@ absl::StatusOr<TetGrid> TetGrid::Build(const mesh::TetMesh& mesh, double cell_si
     return absl::InvalidArgumentError(
         absl::StrCat("margin must be non-negative and finite (m), got ", margin));
   }
-  TetGrid grid(mesh, cell_size, margin);
+  TetGrid grid(mesh, margin);
+  const mesh::Bounds bounds = mesh::MeasureBounds(mesh, /*current=*/true);
+  const Eigen::Vector3d extent = mesh.vertex_count() == 0
+                                     ? Eigen::Vector3d::Zero()
+                                     : Eigen::Vector3d(bounds.high - bounds.low);
+  const double budget =
+      std::max(kMinCells, kMaxCellsPerTet * static_cast<double>(mesh.tet_count()));
+  auto cells_needed = [&](double size) {
+    double cells = 1;
+    for (int axis = 0; axis < 3; ++axis) cells *= std::floor(extent[axis] / size) + 3;
+    return cells;
+  };
+  while (cells_needed(cell_size) > budget) cell_size *= 1.25;
+  grid.cell_size_ = cell_size;
+  grid.origin_ =
+      (mesh.vertex_count() == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(bounds.low)).array() -
+      cell_size;
+  for (int axis = 0; axis < 3; ++axis) {
+    grid.dims_[axis] = static_cast<std::int32_t>(std::floor(extent[axis] / cell_size)) + 3;
+  }
+  grid.cells_.resize(static_cast<std::size_t>(grid.dims_[0]) * grid.dims_[1] * grid.dims_[2]);
   const auto current = mesh.current_positions();
   grid.registered_at_.assign(current.begin(), current.end());
   for (const TetId t : mesh.tets()) grid.Register(t);
@@ -29,45 +67,44 @@ absl::StatusOr<TetGrid> TetGrid::Build(const mesh::TetMesh& mesh, double cell_si
   return grid;
 }
 
-TetGrid::Cell TetGrid::CellOf(const Eigen::Vector3d& p) const {
-  Cell c;
+std::array<std::int32_t, 3> TetGrid::CellOf(const Eigen::Vector3d& p) const {
+  std::array<std::int32_t, 3> c;
   for (int axis = 0; axis < 3; ++axis) {
-    c[axis] = static_cast<std::int32_t>(std::floor(p[axis] / cell_size_));
+    const double cell = std::floor((p[axis] - origin_[axis]) / cell_size_);
+    c[axis] =
+        static_cast<std::int32_t>(std::clamp(cell, 0.0, static_cast<double>(dims_[axis] - 1)));
   }
   return c;
 }
 
 void TetGrid::Register(TetId t) {
   const mesh::Bounds box = mesh::MeasureTetBounds(*mesh_, t, /*current=*/true);
-  if (ranges_.size() <= Index(t)) ranges_.resize(Index(t) + 1);
-  CellRange& range = ranges_[Index(t)];
   // A corner is within margin of its reference now and will stay within margin of it until
   // the reference moves, so twice the margin covers it until then.
-  range = {CellOf(box.low.array() - 2 * margin_), CellOf(box.high.array() + 2 * margin_), true};
-  for (std::int32_t x = range.low[0]; x <= range.high[0]; ++x) {
-    for (std::int32_t y = range.low[1]; y <= range.high[1]; ++y) {
-      for (std::int32_t z = range.low[2]; z <= range.high[2]; ++z) cells_[{x, y, z}].push_back(t);
-    }
+  const Eigen::Vector3d low = box.low.array() - 2 * margin_;
+  const Eigen::Vector3d high = box.high.array() + 2 * margin_;
+  Entry entry{t, {}, {}};
+  for (int axis = 0; axis < 3; ++axis) {
+    entry.low[axis] = RoundOutwards(low[axis], /*up=*/false);
+    entry.high[axis] = RoundOutwards(high[axis], /*up=*/true);
   }
+  max_half_extent_ = max_half_extent_.cwiseMax(0.5 * (entry.high - entry.low).cast<double>());
+  const std::uint32_t cell = CellIndex(CellOf(0.5 * (low + high)));
+  if (cell_of_.size() <= Index(t)) cell_of_.resize(Index(t) + 1, kUnregistered);
+  cell_of_[Index(t)] = cell;
+  cells_[cell].push_back(entry);
   ++registered_count_;
 }
 
 void TetGrid::Unregister(TetId t) {
-  CellRange& range = ranges_[Index(t)];
-  if (!range.registered) return;
-  for (std::int32_t x = range.low[0]; x <= range.high[0]; ++x) {
-    for (std::int32_t y = range.low[1]; y <= range.high[1]; ++y) {
-      for (std::int32_t z = range.low[2]; z <= range.high[2]; ++z) {
-        const auto cell = cells_.find(Cell{x, y, z});
-        std::vector<TetId>& list = cell->second;
-        const auto it = std::find(list.begin(), list.end(), t);
-        *it = list.back();
-        list.pop_back();
-        if (list.empty()) cells_.erase(cell);
-      }
-    }
-  }
-  range.registered = false;
+  if (Index(t) >= cell_of_.size() || cell_of_[Index(t)] == kUnregistered) return;
+  absl::InlinedVector<Entry, 6>& list = cells_[cell_of_[Index(t)]];
+  const auto it =
+      std::find_if(list.begin(), list.end(), [&](const Entry& e) { return e.tet == t; });
+  assert(it != list.end());
+  *it = list.back();
+  list.pop_back();
+  cell_of_[Index(t)] = kUnregistered;
   --registered_count_;
 }
 
@@ -111,19 +148,21 @@ absl::Status TetGrid::Refresh() {
 
 std::vector<TetId> TetGrid::Candidates(const Eigen::Vector3d& low,
                                        const Eigen::Vector3d& high) const {
-  const Cell lo = CellOf(low), hi = CellOf(high);
-  seen_.resize(ranges_.size(), 0);
-  ++query_;
+  // A registered box meeting the query has its centre within its half-extent of the query.
+  const std::array<std::int32_t, 3> lo = CellOf(low - max_half_extent_);
+  const std::array<std::int32_t, 3> hi = CellOf(high + max_half_extent_);
+  const Eigen::Vector3f query_low = low.cast<float>(), query_high = high.cast<float>();
   std::vector<TetId> result;
-  for (std::int32_t x = lo[0]; x <= hi[0]; ++x) {
+  for (std::int32_t z = lo[2]; z <= hi[2]; ++z) {
     for (std::int32_t y = lo[1]; y <= hi[1]; ++y) {
-      for (std::int32_t z = lo[2]; z <= hi[2]; ++z) {
-        const auto cell = cells_.find(Cell{x, y, z});
-        if (cell == cells_.end()) continue;
-        for (const TetId t : cell->second) {
-          if (seen_[Index(t)] == query_) continue;
-          seen_[Index(t)] = query_;
-          result.push_back(t);
+      for (std::int32_t x = lo[0]; x <= hi[0]; ++x) {
+        for (const Entry& e : cells_[CellIndex({x, y, z})]) {
+          // Float comparisons: a query corner rounded either way still meets a box rounded
+          // outwards whenever the exact ones meet.
+          if ((e.low.array() <= query_high.array()).all() &&
+              (e.high.array() >= query_low.array()).all()) {
+            result.push_back(e.tet);
+          }
         }
       }
     }

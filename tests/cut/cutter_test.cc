@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -57,7 +58,7 @@ double BoundaryArea(const TetMesh& m) {
 void Sweep(Cutter& cutter, const TetMesh& m, const Eigen::Vector3d& tip_start,
            const Eigen::Vector3d& heel_start, const Eigen::Vector3d& travel, double* time) {
   const double volume = RestVolume(m);
-  const int steps = static_cast<int>(std::ceil(travel.norm() / 0.002));
+  const int steps = std::max(1, static_cast<int>(std::ceil(travel.norm() / 0.002)));
   for (int k = 0; k <= steps; ++k) {
     const Eigen::Vector3d shift = travel * (static_cast<double>(k) / steps);
     ASSERT_TRUE(cutter.ApplyPose({*time, tip_start + shift, heel_start + shift}).ok());
@@ -130,6 +131,52 @@ TEST(Cutter, ABladeWhoseTipStaysInsideLeavesACrack) {
   EXPECT_GT(cracked, 0u);
   // The crack's two faces add about twice its area: 20 mm wide (y) and 9.3 mm deep.
   EXPECT_NEAR(BoundaryArea(m) - area, 2 * 0.02 * 0.0093, 0.1 * 2 * 0.02 * 0.0093);
+}
+
+// Blades on the lattice's own planes and lines pass exactly through vertices, along edges and
+// in the planes of faces; they also reverse and hesitate there. Every pose leaves a valid,
+// conforming mesh of the same volume, and crossings too close to a vertex or edge are counted.
+TEST(Cutter, DegenerateBladesLeaveAValidMesh) {
+  struct Blade {
+    const char* what;
+    Eigen::Vector3d tip, heel, travel;
+  };
+  const Blade blades[] = {
+      {"through a row of vertices, in the plane x = 30 mm",
+       {0.03, -0.005, -0.005},
+       {0.03, -0.005, 0.025},
+       {0, 0.03, 0}},
+      {"its tip along an edge (y = 10 mm, z = 10 mm)",
+       {-0.005, 0.01, 0.01},
+       {-0.005, 0.01, 0.03},
+       {0.07, 0, 0}},
+      {"in the plane of faces (z = 10 mm), edge first",
+       {0.0237, -0.005, 0.01},
+       {0.0237, 0.025, 0.01},
+       {0.02, 0, 0}},
+      {"through a vertex diagonally",
+       {-0.005, -0.005, 0.0},
+       {-0.005, -0.005, 0.03},
+       {0.04, 0.04, 0}},
+  };
+  for (const Blade& blade : blades) {
+    SCOPED_TRACE(blade.what);
+    TetMesh m = Bar();
+    const double volume = RestVolume(m);
+    Cutter cutter = *Cutter::Create(&m, 0.01);
+    double time = 0;
+    Sweep(cutter, m, blade.tip, blade.heel, blade.travel, &time);
+    // Hesitate (the same pose again), then go back half way and forward again.
+    Sweep(cutter, m, blade.tip + blade.travel, blade.heel + blade.travel, {0, 0, 0}, &time);
+    Sweep(cutter, m, blade.tip + blade.travel, blade.heel + blade.travel, -0.5 * blade.travel,
+          &time);
+    Sweep(cutter, m, blade.tip + 0.5 * blade.travel, blade.heel + 0.5 * blade.travel,
+          0.5 * blade.travel, &time);
+    cutter.Finish();
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    EXPECT_GT(cutter.statistics().degenerate_hits, 0u);
+  }
 }
 
 TEST(Cutter, ABadPoseIsRefusedAndChangesNothing) {

@@ -76,6 +76,35 @@ TEST(TetGrid, FindsEveryTetABoxMeetsAsTheMeshDeformsAndChanges) {
   ExpectCandidatesCoverBruteForce(m, grid, random);
 }
 
+TEST(TetGrid, FindsTetsThatMovedFarOutsideTheBoundsItWasBuiltFor) {
+  mesh::TetMesh m = Lattice();
+  TetGrid grid = *TetGrid::Build(m, 0.01, 0.002);
+  // Stretch the mesh to three times its size about a corner: most tets leave the grid's cells
+  // and count in the cells at its edge.
+  for (const VertexId v : m.vertices()) m.set_current_position(v, 3 * m.current_position(v));
+  ASSERT_TRUE(grid.Refresh().ok());
+  for (const TetId t : m.tets()) {
+    Eigen::Vector3d lo = m.current_position(m.tet(t)[0]), hi = lo;
+    for (const VertexId v : m.tet(t)) {
+      lo = lo.cwiseMin(m.current_position(v));
+      hi = hi.cwiseMax(m.current_position(v));
+    }
+    const Eigen::Vector3d centre = 0.5 * (lo + hi);
+    const std::vector<TetId> near = grid.Candidates(centre, centre);
+    ASSERT_NE(std::find(near.begin(), near.end(), t), near.end()) << mesh::Index(t);
+  }
+}
+
+TEST(TetGrid, MakesCellsLargerRatherThanMoreThanOnePerTet) {
+  mesh::TetMesh m = Lattice();  // 1440 tets over 8 x 6 x 5 cm
+  // A stray vertex 1 m away (used by no tet) stretches the bounds.
+  (void)m.AddVertex({1.0, 1.0, 1.0});
+  const TetGrid grid = *TetGrid::Build(m, 0.001, 0.0002);
+  EXPECT_GT(grid.cell_size(), 0.001);
+  const double cells_per_axis = 1.0 / grid.cell_size() + 3;
+  EXPECT_LE(cells_per_axis * cells_per_axis * cells_per_axis, 4096 * 1.25 * 1.25 * 1.25 * 1.1);
+}
+
 TEST(TetGrid, RefreshOnlyTouchesTetsAroundVerticesThatMovedBeyondTheMargin) {
   mesh::TetMesh m = Lattice();
   TetGrid grid = *TetGrid::Build(m, 0.01, 0.002);
