@@ -169,6 +169,13 @@ bool Cutter::BladeInside(TetId t, const BladePose& pose) const {
   return false;
 }
 
+std::vector<TetId> Cutter::TetsHoldingBlade(const BladePose& pose) const {
+  std::vector<TetId> near =
+      grid_.Candidates(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel));
+  std::erase_if(near, [&](TetId t) { return !mesh_->IsAlive(t) || !BladeInside(t, pose); });
+  return near;
+}
+
 void Cutter::SplitReadyGroups(const BladePose* pose, const std::vector<TetId>* near) {
   absl::flat_hash_set<TetId> blade_inside;  // roots of groups the blade is still in
   if (near != nullptr) {

@@ -76,6 +76,9 @@ class Cutter {
   // The vertices made since the last call that are still used (in creation order).
   std::vector<MadeVertex> TakeMadeVertices();
 
+  // The live tets the blade at `pose` is inside or crosses (on current positions). O(tets near).
+  std::vector<mesh::TetId> TetsHoldingBlade(const BladePose& pose) const;
+
   // Whether the cutter made `t` (it replaced a cut tet).
   bool MadeByCut(mesh::TetId t) const { return source_tet_.contains(t); }
 

@@ -1,0 +1,89 @@
+// kerf-server: serves kerf.v1.Simulator over gRPC (with standard health checking and server
+// reflection). With no arguments it listens on 127.0.0.1:50051 with the embedded default
+// scene. SIGINT or SIGTERM shut it down gracefully: every stream ends with UNAVAILABLE.
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+#include "absl/flags/flag.h"
+#include "absl/flags/parse.h"
+#include "absl/flags/usage.h"
+#include "absl/strings/str_cat.h"
+#include "service/session_registry.h"
+#include "service/simulator_service.h"
+
+ABSL_FLAG(std::string, listen, "127.0.0.1:50051",
+          "address to listen on, host:port (port 0 picks a free one, printed at start)");
+ABSL_FLAG(std::string, default_scene, "lattice-tension",
+          "embedded scene for sessions created without one");
+ABSL_FLAG(int, max_sessions, 16, "sessions the server holds at once");
+ABSL_FLAG(int, max_observers, 64, "observers per session");
+ABSL_FLAG(double, physics_rate_hz, 1000, "default physics tick rate of a session");
+ABSL_FLAG(double, frame_rate_hz, 60, "default frame rate for observers");
+ABSL_FLAG(int, max_message_bytes, 4 << 20, "largest request accepted, bytes");
+
+int main(int argc, char** argv) {
+  absl::SetProgramUsageMessage("kerf-server [--listen=HOST:PORT] [--default_scene=NAME] ...");
+  absl::ParseCommandLine(argc, argv);
+
+  // Signals are taken by a thread of their own (blocked here, before any other thread starts).
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  kerf::service::RegistryOptions options;
+  options.max_sessions = static_cast<std::size_t>(absl::GetFlag(FLAGS_max_sessions));
+  options.default_scene = absl::GetFlag(FLAGS_default_scene);
+  options.session.max_subscribers = static_cast<std::size_t>(absl::GetFlag(FLAGS_max_observers));
+  options.session.physics_rate_hz = absl::GetFlag(FLAGS_physics_rate_hz);
+  options.session.frame_rate_hz = absl::GetFlag(FLAGS_frame_rate_hz);
+  kerf::service::SessionRegistry registry(options);
+  // The default scene must load: fail at start, not at the first request.
+  if (absl::StatusOr<kerf::sim::Scene> scene = kerf::sim::LoadScene(options.default_scene);
+      !scene.ok()) {
+    std::fprintf(stderr, "kerf-server: %s\n", scene.status().ToString().c_str());
+    return 2;
+  }
+  kerf::service::SimulatorService service(&registry);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(absl::GetFlag(FLAGS_listen), grpc::InsecureServerCredentials(), &port);
+  builder.RegisterService(&service);
+  builder.SetMaxReceiveMessageSize(absl::GetFlag(FLAGS_max_message_bytes));
+  // Keepalive: ping idle connections every 20 s, drop them if a ping gets no answer in 10 s;
+  // clients may ping every 10 s, also without calls.
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 20000);
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 10000);
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_PERMIT_WITHOUT_CALLS, 1);
+  builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 10000);
+  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (server == nullptr || port == 0) {
+    std::fprintf(stderr, "kerf-server: cannot listen on %s\n", absl::GetFlag(FLAGS_listen).c_str());
+    return 1;
+  }
+  const std::string address = absl::GetFlag(FLAGS_listen);
+  std::printf("kerf-server listening on %s:%d\n", address.substr(0, address.rfind(':')).c_str(),
+              port);
+  std::fflush(stdout);
+
+  std::thread waiter([&] {
+    int signal = 0;
+    sigwait(&signals, &signal);
+    std::printf("kerf-server: signal %d, shutting down\n", signal);
+    std::fflush(stdout);
+    registry.CloseAll(absl::UnavailableError("the server is shutting down"));
+    server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  });
+  server->Wait();
+  waiter.join();
+  return 0;
+}

@@ -1,0 +1,140 @@
+// A session: one tissue model stepped in real time on its own thread, one cutter feeding it
+// blade poses, and subscribers receiving frames at their level.
+//
+// The physics thread ticks at a fixed rate (default 1 kHz); a tick applies the poses that are
+// due (interpolating between poses that come slower than the ticks), advances the model by the
+// tick's period in steps of the scene's time step, and makes frames: every `frame_every` ticks
+// for observers (default 60 Hz), every tick (or at its own rate) for the cutter. Each frame is
+// made and serialized once per view and offered to every subscriber's FrameQueue, which never
+// blocks the tick.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/synchronization/notification.h"
+#include "absl/time/time.h"
+#include "cut/blade.h"
+#include "kerf/v1/frame.pb.h"
+#include "kerf/v1/simulator.pb.h"
+#include "service/frame_queue.h"
+#include "service/level_view.h"
+#include "sim/scene.h"
+#include "sim/simulation.h"
+
+namespace kerf::service {
+
+struct SessionOptions {
+  double physics_rate_hz = 1000;
+  double frame_rate_hz = 60;           // for observers
+  std::size_t max_subscribers = 64;    // observers, per session
+  std::size_t max_waiting_frames = 8;  // per subscriber before a resync
+  cut::BladeLimits blade_limits;
+};
+
+// A subscriber's handle: its queue, and what it asked for. Made by Session::Subscribe.
+struct Subscription {
+  kerf::v1::Level level;
+  bool cutter = false;
+  std::unique_ptr<FrameQueue> queue;
+  // Called once if the session ends the subscription (it was closed or is shutting down).
+  std::function<void(const absl::Status&)> on_end;
+};
+
+class Session {
+ public:
+  // INVALID_ARGUMENT for a scene the simulation cannot take or bad rates. Starts the thread.
+  static absl::StatusOr<std::unique_ptr<Session>> Create(std::string id, sim::Scene scene,
+                                                         const SessionOptions& options);
+  ~Session();  // Close(CANCELLED "session closed")
+
+  // Stops the thread and ends every subscription with `why`. Idempotent.
+  void Close(const absl::Status& why);
+
+  const std::string& id() const { return id_; }
+
+  // Adds an observer at `level`; `start_write` writes one frame (see FrameQueue).
+  // FAILED_PRECONDITION for a level the scene does not offer, RESOURCE_EXHAUSTED at the
+  // subscriber limit, INVALID_ARGUMENT for an unspecified level.
+  absl::StatusOr<std::shared_ptr<Subscription>> Observe(
+      kerf::v1::Level level, std::function<void(const SerializedFrame&)> start_write,
+      std::function<void(const absl::Status&)> on_end);
+  // Takes the blade: FAILED_PRECONDITION while another cutter holds it. Frames at `level`
+  // every `frame_rate_hz` (0: every tick).
+  absl::StatusOr<std::shared_ptr<Subscription>> BeginCut(
+      kerf::v1::Level level, double frame_rate_hz,
+      std::function<void(const SerializedFrame&)> start_write,
+      std::function<void(const absl::Status&)> on_end);
+  // Queues a pose of the current cut: INVALID_ARGUMENT (and nothing queued) for a bad one.
+  absl::Status SubmitPose(const kerf::v1::BladePose& pose);
+  // The cutter has sent its last pose: the poses it sent are still applied, then the blade is
+  // withdrawn, the frame of that tick is offered, and `on_withdrawn` is called (on the
+  // physics thread).
+  void EndCut(std::function<void()> on_withdrawn = nullptr);
+  void Unsubscribe(const std::shared_ptr<Subscription>& subscription);
+
+  // A keyframe made afresh from the model at the next observer frame of `level` (same
+  // sequence number as that frame). DEADLINE_EXCEEDED if the session does not tick in time.
+  absl::StatusOr<kerf::v1::Frame> Snapshot(kerf::v1::Level level, absl::Duration timeout);
+
+  kerf::v1::SessionInfo Info() const;
+
+ private:
+  struct View {
+    LevelView frames;
+    std::uint64_t every_ticks;
+    std::vector<std::shared_ptr<Subscription>> subscribers;
+  };
+  struct SnapshotRequest {
+    kerf::v1::Level level;
+    absl::Notification done;
+    kerf::v1::Frame frame;
+  };
+
+  Session(std::string id, const SessionOptions& options) : id_(std::move(id)), options_(options) {}
+  void Run();
+  void Tick() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void ApplyDuePoses(double until) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void Publish(View& view, const TickReport& report, bool snapshot_pending)
+      ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  bool Offers(kerf::v1::Level level) const;
+  void StopThread();
+
+  const std::string id_;
+  const SessionOptions options_;
+  std::string scene_name_;
+  std::vector<kerf::v1::Level> levels_;
+  std::uint32_t original_vertex_bound_ = 0;
+  double tick_seconds_ = 0;
+
+  mutable absl::Mutex mutex_;
+  std::unique_ptr<sim::Simulation> simulation_ ABSL_GUARDED_BY(mutex_);
+  double simulation_time_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::uint64_t ticks_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::uint64_t overruns_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::uint64_t poses_applied_ ABSL_GUARDED_BY(mutex_) = 0;
+  double last_tick_seconds_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::vector<std::unique_ptr<View>> observer_views_ ABSL_GUARDED_BY(mutex_);  // by level
+  std::unique_ptr<View> cutter_view_ ABSL_GUARDED_BY(mutex_);
+  // The blade: poses on the simulation's clock, waiting to be applied.
+  std::deque<cut::BladePose> poses_ ABSL_GUARDED_BY(mutex_);
+  std::optional<cut::BladePose> last_submitted_ ABSL_GUARDED_BY(mutex_);
+  std::optional<cut::BladePose> last_applied_ ABSL_GUARDED_BY(mutex_);
+  std::optional<cut::BladePose> before_last_applied_ ABSL_GUARDED_BY(mutex_);
+  double pose_time_offset_ ABSL_GUARDED_BY(mutex_) = 0;  // simulation time - client time
+  bool withdraw_when_done_ ABSL_GUARDED_BY(mutex_) = false;
+  std::function<void()> on_withdrawn_ ABSL_GUARDED_BY(mutex_);
+  bool withdrawn_this_tick_ ABSL_GUARDED_BY(mutex_) = false;
+  std::vector<SnapshotRequest*> snapshots_ ABSL_GUARDED_BY(mutex_);
+  bool stopping_ ABSL_GUARDED_BY(mutex_) = false;
+  std::thread thread_;
+};
+
+}  // namespace kerf::service
