@@ -360,7 +360,13 @@ void Session::Tick() {
   }
   if (withdrawn_this_tick_) {
     withdrawn_this_tick_ = false;
-    if (on_withdrawn_) std::exchange(on_withdrawn_, nullptr)();
+    if (on_withdrawn_) {  // the cut is over: the blade is free for the next cutter at once
+      if (cutter_view_ != nullptr) {
+        for (const auto& subscriber : cutter_view_->subscribers) subscriber->queue->Close();
+        cutter_view_.reset();
+      }
+      std::exchange(on_withdrawn_, nullptr)();
+    }
   }
 }
 

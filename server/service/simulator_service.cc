@@ -108,23 +108,36 @@ class ObserveReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
       writer_->Finish(ToGrpcStatus(subscription.status()));
       return;
     }
-    subscription_ = *std::move(subscription);
+    SetSubscription(*std::move(subscription));
   }
 
   void OnWriteDone(bool ok) override {
-    if (writer_->WriteDone(ok) && subscription_) subscription_->queue->WriteDone();
+    const auto subscription = subscription_of();
+    if (writer_->WriteDone(ok) && subscription) subscription->queue->WriteDone();
   }
   void OnCancel() override { writer_->Finish(grpc::Status::CANCELLED); }
   void OnDone() override {
     writer_->Done();
-    if (subscription_) session_->Unsubscribe(subscription_);
+    if (const auto subscription = subscription_of(); subscription) {
+      session_->Unsubscribe(subscription);
+    }
     delete this;
   }
 
  private:
+  std::shared_ptr<Subscription> subscription_of() {
+    absl::MutexLock lock(&mutex_);
+    return subscription_;
+  }
+  void SetSubscription(std::shared_ptr<Subscription> subscription) {
+    absl::MutexLock lock(&mutex_);
+    subscription_ = std::move(subscription);
+  }
+
   std::shared_ptr<FrameWriter<ObserveReactor>> writer_;
   std::shared_ptr<Session> session_;
-  std::shared_ptr<Subscription> subscription_;
+  absl::Mutex mutex_;  // write reactions may run while the constructor finishes
+  std::shared_ptr<Subscription> subscription_ ABSL_GUARDED_BY(mutex_);
 };
 
 class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer> {
@@ -149,6 +162,11 @@ class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::
       return;
     }
     if (absl::Status s = Handle(request); !s.ok()) {
+      // The blade is free for the next cutter before the client hears (OnDone unsubscribes
+      // again, harmlessly).
+      if (const auto subscription = subscription_of(); subscription) {
+        session_->Unsubscribe(subscription);
+      }
       writer_->Finish(ToGrpcStatus(s));
       return;
     }
@@ -156,18 +174,21 @@ class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::
   }
 
   void OnWriteDone(bool ok) override {
-    if (writer_->WriteDone(ok) && subscription_) subscription_->queue->WriteDone();
+    const auto subscription = subscription_of();
+    if (writer_->WriteDone(ok) && subscription) subscription->queue->WriteDone();
   }
   void OnCancel() override { writer_->Finish(grpc::Status::CANCELLED); }
   void OnDone() override {
     writer_->Done();
-    if (subscription_) session_->Unsubscribe(subscription_);  // withdraws the blade
+    if (const auto subscription = subscription_of(); subscription) {
+      session_->Unsubscribe(subscription);  // withdraws the blade
+    }
     delete this;
   }
 
  private:
   absl::Status Handle(const kerf::v1::CutRequest& request) {
-    if (subscription_ == nullptr) {
+    if (subscription_of() == nullptr) {
       if (!request.has_start()) {
         return absl::InvalidArgumentError("the first CutRequest must be `start`");
       }
@@ -180,7 +201,7 @@ class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::
           [w = writer_](const SerializedFrame& f) { w->Write(f); },
           [w = writer_](const absl::Status& s) { w->Finish(ToGrpcStatus(s)); });
       if (!subscription.ok()) return subscription.status();
-      subscription_ = *std::move(subscription);
+      SetSubscription(*std::move(subscription));
       return absl::OkStatus();
     }
     if (!request.has_pose()) {
@@ -189,11 +210,21 @@ class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::
     return session_->SubmitPose(request.pose());
   }
 
+  std::shared_ptr<Subscription> subscription_of() {
+    absl::MutexLock lock(&mutex_);
+    return subscription_;
+  }
+  void SetSubscription(std::shared_ptr<Subscription> subscription) {
+    absl::MutexLock lock(&mutex_);
+    subscription_ = std::move(subscription);
+  }
+
   SessionRegistry* registry_;
   std::shared_ptr<FrameWriter<CutReactor>> writer_;
   grpc::ByteBuffer request_;
-  std::shared_ptr<Session> session_;
-  std::shared_ptr<Subscription> subscription_;
+  std::shared_ptr<Session> session_;  // set by the read reactions only
+  absl::Mutex mutex_;                 // read and write reactions run concurrently
+  std::shared_ptr<Subscription> subscription_ ABSL_GUARDED_BY(mutex_);
 };
 
 grpc::ServerUnaryReactor* FinishUnary(grpc::CallbackServerContext* context,
