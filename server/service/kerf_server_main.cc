@@ -1,9 +1,7 @@
 // kerf-server: serves kerf.v1.Simulator over gRPC (with standard health checking and server
 // reflection). With no arguments it listens on 127.0.0.1:50051 with the embedded default
 // scene. SIGINT or SIGTERM shut it down gracefully: every stream ends with UNAVAILABLE.
-#include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
-#include <grpcpp/health_check_service_interface.h>
 
 #include <csignal>
 #include <cstdio>
@@ -13,6 +11,7 @@
 #include "absl/flags/parse.h"
 #include "absl/flags/usage.h"
 #include "absl/strings/str_cat.h"
+#include "service/grpc_server.h"
 #include "service/session_registry.h"
 #include "service/simulator_service.h"
 
@@ -52,24 +51,17 @@ int main(int argc, char** argv) {
   }
   kerf::service::SimulatorService service(&registry);
 
-  grpc::EnableDefaultHealthCheckService(true);
-  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
-  grpc::ServerBuilder builder;
-  int port = 0;
-  builder.AddListeningPort(absl::GetFlag(FLAGS_listen), grpc::InsecureServerCredentials(), &port);
-  builder.RegisterService(&service);
-  builder.SetMaxReceiveMessageSize(absl::GetFlag(FLAGS_max_message_bytes));
-  // Keepalive: ping idle connections every 20 s, drop them if a ping gets no answer in 10 s;
-  // clients may ping every 10 s, also without calls.
-  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 20000);
-  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 10000);
-  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_PERMIT_WITHOUT_CALLS, 1);
-  builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 10000);
-  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
-  if (server == nullptr || port == 0) {
-    std::fprintf(stderr, "kerf-server: cannot listen on %s\n", absl::GetFlag(FLAGS_listen).c_str());
+  kerf::service::ServerConfig config;
+  config.listen = absl::GetFlag(FLAGS_listen);
+  config.max_message_bytes = absl::GetFlag(FLAGS_max_message_bytes);
+  absl::StatusOr<kerf::service::RunningServer> running =
+      kerf::service::StartServer(config, &service);
+  if (!running.ok()) {
+    std::fprintf(stderr, "kerf-server: %s\n", running.status().ToString().c_str());
     return 1;
   }
+  grpc::Server* server = running->server.get();
+  const int port = running->port;
   const std::string address = absl::GetFlag(FLAGS_listen);
   std::printf("kerf-server listening on %s:%d\n", address.substr(0, address.rfind(':')).c_str(),
               port);

@@ -1,6 +1,7 @@
 // The service end to end: a real gRPC server on loopback (ephemeral port) and real clients.
 #include "service/simulator_service.h"
 
+#include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
@@ -13,6 +14,8 @@
 #include <thread>
 
 #include "absl/synchronization/mutex.h"
+#include "absl/synchronization/notification.h"
+#include "service/grpc_server.h"
 #include "sim/scene.h"
 
 namespace kerf::service {
@@ -47,10 +50,10 @@ class Server {
  public:
   explicit Server(RegistryOptions options = {})
       : registry_(std::move(options)), service_(&registry_) {
-    grpc::ServerBuilder builder;
-    builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port_);
-    builder.RegisterService(&service_);
-    server_ = builder.BuildAndStart();
+    absl::StatusOr<RunningServer> running = StartServer({"127.0.0.1:0"}, &service_);
+    EXPECT_TRUE(running.ok()) << running.status();
+    server_ = std::move(running->server);
+    port_ = running->port;
     channel_ =
         grpc::CreateChannel(absl::StrCat("127.0.0.1:", port_), grpc::InsecureChannelCredentials());
     stub_ = kerf::v1::Simulator::NewStub(channel_);
@@ -60,10 +63,13 @@ class Server {
     server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
   }
   kerf::v1::Simulator::Stub& stub() { return *stub_; }
+  grpc::Channel& channel() { return *channel_; }
+  int port() const { return port_; }
 
-  kerf::v1::SessionInfo CreateBarSession() {
+  kerf::v1::SessionInfo CreateBarSession(double frame_rate_hz = 0, const char* scene = kBarScene) {
     kerf::v1::CreateSessionRequest request;
-    *request.mutable_scene() = *sim::ParseSceneText(kBarScene, "test");
+    request.set_frame_rate_hz(frame_rate_hz);
+    *request.mutable_scene() = *sim::ParseSceneText(scene, "test");
     kerf::v1::SessionInfo info;
     grpc::ClientContext context;
     const grpc::Status status = stub_->CreateSession(&context, request, &info);
@@ -140,23 +146,32 @@ struct View {
 // An observer on its own thread, keeping what it rebuilt at each sequence number.
 class Observer {
  public:
-  Observer(kerf::v1::Simulator::Stub& stub, const std::string& session, kerf::v1::Level level) {
+  // `stall`: how long it waits before reading (a slow client).
+  Observer(kerf::v1::Simulator::Stub& stub, const std::string& session, kerf::v1::Level level,
+           absl::Duration stall = absl::ZeroDuration()) {
     kerf::v1::ObserveRequest request;
     request.set_session_id(session);
     request.set_level(level);
     reader_ = stub.Observe(&context_, request);
-    thread_ = std::thread([this] {
+    thread_ = std::thread([this, stall] {
+      absl::SleepFor(stall);
       Frame frame;
       View view;
       while (reader_->Read(&frame)) {
         std::string error;
         absl::MutexLock lock(&mutex_);
+        if (frames_ == 0) first_was_keyframe_ = frame.keyframe();
+        if (frames_ > 0 && !frame.keyframe() && frame.sequence() > last_sequence_ + 1) ++gaps_;
+        ++frames_;
         if (!view.Apply(frame, &error)) errors_.push_back(error);
         if (frame.keyframe()) ++keyframes_;
         by_sequence_[frame.sequence()] = view;
         last_sequence_ = frame.sequence();
       }
-      status_ = reader_->Finish();
+      const grpc::Status status = reader_->Finish();
+      absl::MutexLock lock(&mutex_);
+      status_ = status;
+      finished_ = true;
     });
   }
   ~Observer() { Stop(); }
@@ -187,6 +202,21 @@ class Observer {
     absl::MutexLock lock(&mutex_);
     return keyframes_;
   }
+  int gaps() {
+    absl::MutexLock lock(&mutex_);
+    return gaps_;
+  }
+  bool first_was_keyframe() {
+    absl::MutexLock lock(&mutex_);
+    return first_was_keyframe_;
+  }
+  // The stream's end status, once the server ended it (within 10 s).
+  std::optional<grpc::Status> EndStatus() {
+    absl::MutexLock lock(&mutex_);
+    mutex_.AwaitWithTimeout(absl::Condition(&finished_), absl::Seconds(10));
+    if (!finished_) return std::nullopt;
+    return status_;
+  }
 
  private:
   grpc::ClientContext context_;
@@ -198,8 +228,44 @@ class Observer {
   std::uint64_t wanted_ = std::numeric_limits<std::uint64_t>::max();
   std::vector<std::string> errors_;
   int keyframes_ = 0;
+  int frames_ = 0;
+  int gaps_ = 0;
+  bool first_was_keyframe_ = false;
+  bool finished_ = false;
   grpc::Status status_;
 };
+
+Frame Snapshot(Server& server, const std::string& session, kerf::v1::Level level) {
+  kerf::v1::GetSnapshotRequest request;
+  request.set_session_id(session);
+  request.set_level(level);
+  Frame snapshot;
+  grpc::ClientContext context;
+  const grpc::Status status = server.stub().GetSnapshot(&context, request, &snapshot);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return snapshot;
+}
+
+// What the observer rebuilt at the snapshot's sequence equals the snapshot.
+void ExpectSeesSnapshot(Observer& observer, const Frame& snapshot) {
+  View expected;
+  std::string error;
+  ASSERT_TRUE(expected.Apply(snapshot, &error)) << error;
+  observer.Want(snapshot.sequence());
+  const std::optional<View> seen = observer.At(snapshot.sequence());
+  ASSERT_TRUE(seen.has_value()) << "no frame " << snapshot.sequence();
+  const std::vector<std::string> errors = observer.errors();
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  EXPECT_EQ(seen->vertices, expected.vertices);
+  EXPECT_EQ(seen->positions, expected.positions);
+  EXPECT_EQ(seen->forces, expected.forces);
+  if (snapshot.level() == kerf::v1::VOLUME) {
+    EXPECT_EQ(seen->elements, expected.elements);
+  }
+  if (snapshot.level() == kerf::v1::SURFACE) {
+    EXPECT_EQ(seen->Triangles(), expected.Triangles());
+  }
+}
 
 kerf::v1::BladePose Pose(double time, double y) {
   kerf::v1::BladePose pose;
@@ -211,7 +277,8 @@ kerf::v1::BladePose Pose(double time, double y) {
 
 // Streams a straight cut across the bar at x = 23.7 mm, 2 mm per pose, 100 poses per second.
 grpc::Status CutAcross(kerf::v1::Simulator::Stub& stub, const std::string& session, int* frames) {
-  grpc::ClientContext context;
+  grpc::ClientContext context_storage;
+  grpc::ClientContext& context = context_storage;
   auto stream = stub.Cut(&context);
   kerf::v1::CutRequest start;
   start.mutable_start()->set_session_id(session);
@@ -249,39 +316,14 @@ TEST(SimulatorService, ObserversAtEveryLevelRebuildWhatTheSnapshotShows) {
   EXPECT_GT(cutter_frames, 5);
   absl::SleepFor(absl::Milliseconds(100));  // the blade is withdrawn, the cut opens
   for (int l = 0; l < 3; ++l) {
-    kerf::v1::GetSnapshotRequest request;
-    request.set_session_id(info.session_id());
-    request.set_level(levels[l]);
-    Frame snapshot;
-    grpc::ClientContext context;
-    ASSERT_TRUE(server.stub().GetSnapshot(&context, request, &snapshot).ok());
-    View expected;
-    std::string error;
-    ASSERT_TRUE(expected.Apply(snapshot, &error)) << error;
+    const Frame snapshot = Snapshot(server, info.session_id(), levels[l]);
     if (levels[l] == kerf::v1::VOLUME) {
-      EXPECT_GT(expected.elements.size(), info.tets());  // the cut made tets
+      EXPECT_GT(snapshot.added_elements_size(), static_cast<int>(info.tets()));  // it is cut
     }
-    if (levels[l] == kerf::v1::SURFACE) {
-      int cut_faces = 0;
-      for (const auto& [id, on_cut] : expected.on_cut) cut_faces += on_cut;
-      EXPECT_GT(cut_faces, 0);  // the cut's faces are marked
+    if (levels[l] == kerf::v1::SURFACE) {  // the cut's faces are marked
+      EXPECT_NE(snapshot.added_elements_on_cut().find('\x01'), std::string::npos);
     }
-    for (int i = 0; i < 3; ++i) {
-      Observer& observer = *observers[3 * l + i];
-      observer.Want(snapshot.sequence());
-      const std::optional<View> seen = observer.At(snapshot.sequence());
-      ASSERT_TRUE(seen.has_value()) << "level " << levels[l] << " observer " << i;
-      EXPECT_TRUE(observer.errors().empty()) << observer.errors().front();
-      EXPECT_EQ(seen->vertices, expected.vertices);
-      EXPECT_EQ(seen->positions, expected.positions);
-      EXPECT_EQ(seen->forces, expected.forces);
-      if (levels[l] == kerf::v1::VOLUME) {
-        EXPECT_EQ(seen->elements, expected.elements);
-      }
-      if (levels[l] == kerf::v1::SURFACE) {
-        EXPECT_EQ(seen->Triangles(), expected.Triangles());
-      }
-    }
+    for (int i = 0; i < 3; ++i) ExpectSeesSnapshot(*observers[3 * l + i], snapshot);
   }
 }
 
@@ -339,6 +381,146 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
   EXPECT_GT(frames, 0);
 }
 
+TEST(SimulatorService, ALateJoinerStartsFromAKeyframeOfTheCutMesh) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  int frames = 0;
+  ASSERT_TRUE(CutAcross(server.stub(), info.session_id(), &frames).ok());
+  Observer late(server.stub(), info.session_id(), kerf::v1::VOLUME);
+  const Frame snapshot = Snapshot(server, info.session_id(), kerf::v1::VOLUME);
+  EXPECT_GT(snapshot.added_elements_size(), static_cast<int>(info.tets()));  // it is cut
+  ExpectSeesSnapshot(late, snapshot);
+  EXPECT_TRUE(late.first_was_keyframe());
+}
+
+TEST(SimulatorService, ASlowObserverSkipsPositionsButLosesNoTopology) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession(500);
+  // The slow observer's channel takes 8 kB at a time (a few frames; no window growth), and
+  // it does not read for a second: the server's writes to it stall while frames come at 500 Hz.
+  grpc::ChannelArguments narrow;
+  narrow.SetInt(GRPC_ARG_HTTP2_STREAM_LOOKAHEAD_BYTES, 8192);
+  narrow.SetInt(GRPC_ARG_HTTP2_BDP_PROBE, 0);
+  const auto slow_stub = kerf::v1::Simulator::NewStub(grpc::CreateCustomChannel(
+      absl::StrCat("127.0.0.1:", server.port()), grpc::InsecureChannelCredentials(), narrow));
+  Observer prompt(server.stub(), info.session_id(), kerf::v1::VOLUME);
+  Observer slow(*slow_stub, info.session_id(), kerf::v1::VOLUME, absl::Seconds(1));
+  int frames = 0;
+  ASSERT_TRUE(CutAcross(server.stub(), info.session_id(), &frames).ok());
+  absl::SleepFor(absl::Seconds(1));
+  const Frame snapshot = Snapshot(server, info.session_id(), kerf::v1::VOLUME);
+  EXPECT_GT(snapshot.added_elements_size(), static_cast<int>(info.tets()));
+  ExpectSeesSnapshot(prompt, snapshot);
+  ExpectSeesSnapshot(slow, snapshot);
+  EXPECT_GT(slow.gaps() + slow.keyframes() - 1, 0) << "the slow observer was never behind";
+  EXPECT_EQ(prompt.keyframes(), 1);
+}
+
+TEST(SimulatorService, ACutterThatDisconnectsMidCutLeavesAWorkingSession) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  Observer observer(server.stub(), info.session_id(), kerf::v1::VOLUME);
+  {
+    grpc::ClientContext context;
+    auto stream = server.stub().Cut(&context);
+    kerf::v1::CutRequest start;
+    start.mutable_start()->set_session_id(info.session_id());
+    stream->Write(start);
+    for (int k = 0; k <= 8; ++k) {  // the blade stops inside the bar
+      kerf::v1::CutRequest request;
+      *request.mutable_pose() = Pose(0.01 * k, -0.005 + 0.002 * k);
+      stream->Write(request);
+    }
+    absl::SleepFor(absl::Milliseconds(50));
+    context.TryCancel();  // gone, without a word
+    Frame frame;
+    while (stream->Read(&frame)) {
+    }
+  }
+  // The blade is withdrawn and free again; everything observed still adds up.
+  for (int wait = 0; wait < 100; ++wait) {
+    kerf::v1::ListSessionsResponse sessions;
+    grpc::ClientContext context;
+    ASSERT_TRUE(server.stub().ListSessions(&context, {}, &sessions).ok());
+    ASSERT_EQ(sessions.sessions_size(), 1);
+    if (!sessions.sessions(0).cutting()) break;
+    absl::SleepFor(absl::Milliseconds(10));
+  }
+  int frames = 0;
+  EXPECT_TRUE(CutAcross(server.stub(), info.session_id(), &frames).ok());
+  ExpectSeesSnapshot(observer, Snapshot(server, info.session_id(), kerf::v1::VOLUME));
+}
+
+TEST(SimulatorService, OneCutterAtATime) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  grpc::ClientContext first_context;
+  auto first = server.stub().Cut(&first_context);
+  kerf::v1::CutRequest start;
+  start.mutable_start()->set_session_id(info.session_id());
+  first->Write(start);
+  Frame frame;
+  ASSERT_TRUE(first->Read(&frame));  // the first cutter holds the blade
+  grpc::ClientContext second_context;
+  auto second = server.stub().Cut(&second_context);
+  second->Write(start);
+  second->WritesDone();
+  while (second->Read(&frame)) {
+  }
+  const grpc::Status status = second->Finish();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_EQ(status.error_message(),
+            absl::StrCat("session ", info.session_id(), " already has a cutter; one at a time"));
+  first->WritesDone();
+  while (first->Read(&frame)) {
+  }
+  EXPECT_TRUE(first->Finish().ok());
+}
+
+TEST(SimulatorService, ClosingASessionEndsItsStreams) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  Observer observer(server.stub(), info.session_id(), kerf::v1::SURFACE);
+  ExpectSeesSnapshot(observer, Snapshot(server, info.session_id(), kerf::v1::SURFACE));
+  kerf::v1::CloseSessionRequest request;
+  request.set_session_id(info.session_id());
+  kerf::v1::CloseSessionResponse response;
+  grpc::ClientContext context;
+  ASSERT_TRUE(server.stub().CloseSession(&context, request, &response).ok());
+  const std::optional<grpc::Status> end = observer.EndStatus();
+  ASSERT_TRUE(end.has_value());
+  EXPECT_EQ(end->error_code(), grpc::StatusCode::CANCELLED);
+  EXPECT_EQ(end->error_message(), absl::StrCat("session ", info.session_id(), " was closed"));
+  kerf::v1::ListSessionsResponse sessions;
+  grpc::ClientContext list_context;
+  ASSERT_TRUE(server.stub().ListSessions(&list_context, {}, &sessions).ok());
+  EXPECT_EQ(sessions.sessions_size(), 0);
+}
+
+TEST(SimulatorService, AnswersStandardHealthChecks) {
+  Server server;
+  grpc::GenericStub generic(std::shared_ptr<grpc::Channel>(&server.channel(), [](auto*) {}));
+  grpc::ClientContext context;
+  grpc::Slice empty{std::string()};  // an empty HealthCheckRequest: the whole server
+  grpc::ByteBuffer request(&empty, 1), response;
+  absl::Notification done;
+  grpc::Status status;
+  generic.UnaryCall(&context, "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
+                    &response, [&](grpc::Status s) {
+                      status = s;
+                      done.Notify();
+                    });
+  done.WaitForNotification();
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  std::vector<grpc::Slice> slices;
+  ASSERT_TRUE(response.Dump(&slices).ok());
+  std::string bytes;
+  for (const grpc::Slice& slice : slices) {
+    bytes.append(reinterpret_cast<const char*>(slice.begin()), slice.size());
+  }
+  EXPECT_EQ(bytes, std::string("\x08\x01", 2));  // HealthCheckResponse{status: SERVING}
+}
+
 TEST(SimulatorService, LimitsAreResourceExhausted) {
   RegistryOptions options;
   options.max_sessions = 1;
@@ -350,6 +532,22 @@ TEST(SimulatorService, LimitsAreResourceExhausted) {
   grpc::ClientContext context;
   EXPECT_EQ(server.stub().CreateSession(&context, request, &created).error_code(),
             grpc::StatusCode::RESOURCE_EXHAUSTED);
+}
+
+TEST(SimulatorService, ObserverLimitIsResourceExhausted) {
+  RegistryOptions options;
+  options.session.max_subscribers = 2;
+  Server server(options);
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  Observer a(server.stub(), info.session_id(), kerf::v1::SURFACE);
+  Observer b(server.stub(), info.session_id(), kerf::v1::VOLUME);
+  ExpectSeesSnapshot(b, Snapshot(server, info.session_id(), kerf::v1::VOLUME));
+  Observer c(server.stub(), info.session_id(), kerf::v1::FORCES);
+  const std::optional<grpc::Status> end = c.EndStatus();
+  ASSERT_TRUE(end.has_value());
+  EXPECT_EQ(end->error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(end->error_message(),
+            absl::StrCat("session ", info.session_id(), " has its limit of 2 observers"));
 }
 
 }  // namespace
