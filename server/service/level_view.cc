@@ -37,6 +37,7 @@ void FillHeader(kerf::v1::Level level, std::uint64_t sequence, std::uint64_t top
                 const TickReport& report, kerf::v1::Frame* frame) {
   frame->set_sequence(sequence);
   frame->set_simulation_time(report.simulation_time);
+  frame->set_blade_time(report.blade_time);
   frame->set_send_time_unix_nanos(absl::ToUnixNanos(absl::Now()));
   frame->set_level(level);
   frame->set_topology_version(topology_version);

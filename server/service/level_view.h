@@ -18,7 +18,8 @@ namespace kerf::service {
 
 // The blade's reaction and the step statistics that every frame of one tick carries.
 struct TickReport {
-  double simulation_time = 0;                             // s
+  double simulation_time = 0;  // s
+  double blade_time = 0;       // s, on the cutter's clock (see Frame.blade_time)
   Eigen::Vector3d tool_force = Eigen::Vector3d::Zero();   // N
   Eigen::Vector3d tool_torque = Eigen::Vector3d::Zero();  // N m
   kerf::v1::StepStatistics statistics;

@@ -294,6 +294,7 @@ void Session::ApplyDuePoses(double until) {
   };
   while (!poses_.empty() && poses_.front().time <= until) {
     apply(poses_.front());
+    blade_time_ = poses_.front().time - pose_time_offset_;
     poses_.pop_front();
   }
   if (!poses_.empty() && last_applied_ && last_applied_->time < until) {
@@ -331,6 +332,7 @@ void Session::Tick() {
 
   TickReport report;
   report.simulation_time = simulation_time_;
+  report.blade_time = blade_time_;
   if (last_applied_) {
     const sim::ToolReaction reaction =
         sim::MeasureToolReaction(*simulation_, *last_applied_, before_last_applied_);

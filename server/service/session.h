@@ -129,6 +129,7 @@ class Session {
   std::optional<cut::BladePose> last_applied_ ABSL_GUARDED_BY(mutex_);
   std::optional<cut::BladePose> before_last_applied_ ABSL_GUARDED_BY(mutex_);
   double pose_time_offset_ ABSL_GUARDED_BY(mutex_) = 0;  // simulation time - client time
+  double blade_time_ ABSL_GUARDED_BY(mutex_) = 0;  // client time of the last pose applied
   bool withdraw_when_done_ ABSL_GUARDED_BY(mutex_) = false;
   std::function<void()> on_withdrawn_ ABSL_GUARDED_BY(mutex_);
   bool withdrawn_this_tick_ ABSL_GUARDED_BY(mutex_) = false;

@@ -107,13 +107,12 @@ absl::StatusOr<mesh::TetMesh> BuildMesh(const kerf::v1::MeshSource& source,
 absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_dir) {
   absl::StatusOr<mesh::TetMesh> mesh = BuildMesh(spec.mesh(), base_dir);
   if (!mesh.ok()) return mesh.status();
-  Scene scene{spec.name(),
-              *std::move(mesh),
-              {},
-              {},
-              spec.integration().method(),
-              spec.integration().time_step(),
-              spec.needs()};
+  Scene scene;
+  scene.name = spec.name();
+  scene.mesh = *std::move(mesh);
+  scene.method = spec.integration().method();
+  scene.time_step = spec.integration().time_step();
+  scene.needs = spec.needs();
   const kerf::v1::Material& m = spec.material();
   scene.material = {m.youngs_modulus(), m.poisson_ratio(), m.density(), m.mass_damping(),
                     m.stiffness_damping()};
