@@ -190,6 +190,14 @@ absl::Status Session::SubmitPose(const kerf::v1::BladePose& message) {
       !s.ok()) {
     return s;
   }
+  if (due.time > simulation_time_ + options_.max_pose_lead_seconds ||
+      poses_.size() >= options_.max_queued_poses) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "pose at ", pose->time, " s is ", due.time - simulation_time_,
+        " s ahead of the session, with ", poses_.size(),
+        " poses waiting; send poses in real time (at most ", options_.max_pose_lead_seconds,
+        " s and ", options_.max_queued_poses, " poses ahead)"));
+  }
   pose_time_offset_ = offset;
   last_submitted_ = due;
   poses_.push_back(due);

@@ -36,6 +36,8 @@ struct SessionOptions {
   double frame_rate_hz = 60;           // for observers
   std::size_t max_subscribers = 64;    // observers, per session
   std::size_t max_waiting_frames = 8;  // per subscriber before a resync
+  double max_pose_lead_seconds = 2;    // how far ahead of the session a pose may be queued
+  std::size_t max_queued_poses = 4096;
   cut::BladeLimits blade_limits;
 };
 
@@ -72,7 +74,9 @@ class Session {
       kerf::v1::Level level, double frame_rate_hz,
       std::function<void(const SerializedFrame&)> start_write,
       std::function<void(const absl::Status&)> on_end);
-  // Queues a pose of the current cut: INVALID_ARGUMENT (and nothing queued) for a bad one.
+  // Queues a pose of the current cut: INVALID_ARGUMENT (and nothing queued) for a bad one,
+  // RESOURCE_EXHAUSTED for one too far ahead of the session or beyond the queue's bound (send
+  // poses in real time).
   absl::Status SubmitPose(const kerf::v1::BladePose& pose);
   // The cutter has sent its last pose: the poses it sent are still applied, then the blade is
   // withdrawn, the frame of that tick is offered, and `on_withdrawn` is called (on the

@@ -1,5 +1,6 @@
 #include "service/simulator_service.h"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -280,8 +281,10 @@ grpc::ServerUnaryReactor* SimulatorService::GetSnapshot(grpc::CallbackServerCont
                                                         kerf::v1::Frame* response) {
   absl::StatusOr<std::shared_ptr<Session>> session = registry_->Find(request->session_id());
   if (!session.ok()) return FinishUnary(context, session.status());
-  // Waits for the session's next frame (milliseconds) on this thread.
-  absl::StatusOr<kerf::v1::Frame> frame = (*session)->Snapshot(request->level(), kSnapshotTimeout);
+  // Waits for the session's next frame (milliseconds) on this thread, within the deadline.
+  const absl::Duration timeout =
+      std::min(kSnapshotTimeout, absl::FromChrono(context->deadline()) - absl::Now());
+  absl::StatusOr<kerf::v1::Frame> frame = (*session)->Snapshot(request->level(), timeout);
   if (frame.ok()) *response = *std::move(frame);
   return FinishUnary(context, frame.status());
 }

@@ -381,6 +381,53 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
   EXPECT_GT(frames, 0);
 }
 
+TEST(SimulatorService, PosesFarAheadOfTheSessionAreRefused) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  grpc::ClientContext context;
+  auto stream = server.stub().Cut(&context);
+  kerf::v1::CutRequest request;
+  request.mutable_start()->set_session_id(info.session_id());
+  stream->Write(request);
+  *request.mutable_pose() = Pose(0, -0.005);
+  stream->Write(request);
+  *request.mutable_pose() = Pose(5, -0.004);  // 5 s later on the client's clock, at once
+  stream->Write(request);
+  stream->WritesDone();
+  Frame frame;
+  while (stream->Read(&frame)) {
+  }
+  const grpc::Status status = stream->Finish();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(status.error_message().find("send poses in real time"), std::string::npos)
+      << status.error_message();
+}
+
+TEST(SimulatorService, AnObserverPastItsDeadlineIsDropped) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::milliseconds(200));
+  kerf::v1::ObserveRequest request;
+  request.set_session_id(info.session_id());
+  request.set_level(kerf::v1::SURFACE);
+  auto reader = server.stub().Observe(&context, request);
+  Frame frame;
+  int frames = 0;
+  while (reader->Read(&frame)) ++frames;
+  EXPECT_GT(frames, 0);
+  EXPECT_EQ(reader->Finish().error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  int observers = -1;
+  for (int wait = 0; wait < 100 && observers != 0; ++wait) {
+    kerf::v1::ListSessionsResponse sessions;
+    grpc::ClientContext list_context;
+    ASSERT_TRUE(server.stub().ListSessions(&list_context, {}, &sessions).ok());
+    observers = static_cast<int>(sessions.sessions(0).observers());
+    absl::SleepFor(absl::Milliseconds(10));
+  }
+  EXPECT_EQ(observers, 0);
+}
+
 TEST(SimulatorService, ALateJoinerStartsFromAKeyframeOfTheCutMesh) {
   Server server;
   const kerf::v1::SessionInfo info = server.CreateBarSession();

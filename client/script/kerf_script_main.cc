@@ -1,0 +1,181 @@
+// kerf-script: one scripted cut against a running kerf-server. Creates a session, watches it
+// as a SURFACE observer, streams a blade path (the `kerf cut` JSON format) in real time as the
+// cutter, and prints what it measured. Exits non-zero on any error.
+#include <grpcpp/grpcpp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "absl/flags/flag.h"
+#include "absl/flags/parse.h"
+#include "absl/flags/usage.h"
+#include "absl/strings/str_cat.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/time/clock.h"
+#include "google/protobuf/util/json_util.h"
+#include "kerf/v1/simulator.grpc.pb.h"
+
+ABSL_FLAG(std::string, server, "127.0.0.1:50051", "the kerf-server to cut against, host:port");
+ABSL_FLAG(std::string, scene, "", "embedded scene for the session (empty: the server's default)");
+ABSL_FLAG(double, settle_seconds, 1.0,
+          "how long to let the session's tissue settle (held and loaded) before cutting");
+ABSL_FLAG(std::string, path, "", "blade path, JSON: {\"poses\": [{\"time\", \"tip\", \"heel\"}]}");
+
+namespace {
+
+int Fail(const std::string& what) {
+  std::fprintf(stderr, "kerf-script: %s\n", what.c_str());
+  return 1;
+}
+
+double Percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(p * static_cast<double>(v.size() - 1))];
+}
+
+// Boundary triangles a SURFACE observer holds, and how many lie on a cut.
+struct Surface {
+  std::set<std::uint32_t> triangles, on_cut;
+  void Apply(const kerf::v1::Frame& f) {
+    if (f.keyframe()) triangles.clear(), on_cut.clear();
+    for (const std::uint32_t id : f.removed_elements()) triangles.erase(id), on_cut.erase(id);
+    for (int i = 0; i < f.added_elements_size(); ++i) {
+      triangles.insert(f.added_elements(i));
+      if (f.added_elements_on_cut()[i] != 0) on_cut.insert(f.added_elements(i));
+    }
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  absl::SetProgramUsageMessage("kerf-script --path=PATH.json [--server=HOST:PORT] [--scene=NAME]");
+  absl::ParseCommandLine(argc, argv);
+  std::ifstream file(absl::GetFlag(FLAGS_path));
+  if (!file) return Fail(absl::StrCat("cannot read --path '", absl::GetFlag(FLAGS_path), "'"));
+  std::stringstream text;
+  text << file.rdbuf();
+  kerf::v1::BladePath path;
+  if (auto s = google::protobuf::util::JsonStringToMessage(text.str(), &path); !s.ok()) {
+    return Fail(absl::StrCat(absl::GetFlag(FLAGS_path), ": ", s.ToString()));
+  }
+  if (path.poses().empty()) return Fail("the path has no poses");
+
+  auto stub = kerf::v1::Simulator::NewStub(
+      grpc::CreateChannel(absl::GetFlag(FLAGS_server), grpc::InsecureChannelCredentials()));
+  kerf::v1::CreateSessionRequest create;
+  create.set_scene_name(absl::GetFlag(FLAGS_scene));
+  kerf::v1::SessionInfo info;
+  {
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+    const grpc::Status s = stub->CreateSession(&context, create, &info);
+    if (!s.ok()) return Fail(absl::StrCat("CreateSession: ", s.error_message()));
+  }
+
+  // The observer.
+  absl::Mutex mutex;
+  Surface surface;
+  std::size_t first_triangles = 0, observer_frames = 0;
+  grpc::ClientContext observe_context;
+  kerf::v1::ObserveRequest observe;
+  observe.set_session_id(info.session_id());
+  observe.set_level(kerf::v1::SURFACE);
+  auto observer = stub->Observe(&observe_context, observe);
+  std::thread watching([&] {
+    kerf::v1::Frame frame;
+    while (observer->Read(&frame)) {
+      absl::MutexLock lock(&mutex);
+      surface.Apply(frame);
+      if (observer_frames++ == 0) first_triangles = surface.triangles.size();
+    }
+  });
+
+  absl::SleepFor(absl::Seconds(absl::GetFlag(FLAGS_settle_seconds)));
+  // The cutter: poses sent at their times, frames read on another thread.
+  grpc::ClientContext cut_context;
+  auto cut = stub->Cut(&cut_context);
+  kerf::v1::CutRequest start;
+  start.mutable_start()->set_session_id(info.session_id());
+  start.mutable_start()->set_level(kerf::v1::FORCES);
+  cut->Write(start);
+  std::vector<absl::Time> sent(path.poses_size());
+  std::vector<double> latencies_ms;
+  std::size_t cutter_frames = 0;
+  double largest_force = 0;
+  std::thread reading([&] {
+    kerf::v1::Frame frame;
+    int seen = -1;
+    while (cut->Read(&frame)) {
+      const absl::Time now = absl::Now();
+      absl::MutexLock lock(&mutex);
+      ++cutter_frames;
+      const auto& f = frame.tool_force();
+      largest_force =
+          std::max(largest_force, std::sqrt(f.x() * f.x() + f.y() * f.y() + f.z() * f.z()));
+      // The pose the frame reports (by its time) and the first frame that shows it.
+      for (int k = seen + 1; k < path.poses_size(); ++k) {
+        // blade_time went through the session's clock and back: equal to within rounding.
+        if (frame.blade_time() == 0 || path.poses(k).time() > frame.blade_time() + 1e-9) break;
+        if (std::abs(path.poses(k).time() - frame.blade_time()) <= 1e-9) {
+          latencies_ms.push_back(absl::ToDoubleMilliseconds(now - sent[k]));
+          seen = k;
+        }
+      }
+    }
+  });
+  const absl::Time begin = absl::Now();
+  const double t0 = path.poses(0).time();
+  for (int k = 0; k < path.poses_size(); ++k) {
+    absl::SleepFor(begin + absl::Seconds(path.poses(k).time() - t0) - absl::Now());
+    kerf::v1::CutRequest request;
+    *request.mutable_pose() = path.poses(k);
+    {
+      absl::MutexLock lock(&mutex);
+      sent[k] = absl::Now();
+    }
+    if (!cut->Write(request)) break;
+  }
+  cut->WritesDone();
+  reading.join();
+  const grpc::Status cut_status = cut->Finish();
+  absl::SleepFor(absl::Milliseconds(200));  // the cut opens; the observer sees it
+  kerf::v1::SessionInfo after;
+  {
+    kerf::v1::ListSessionsResponse sessions;
+    grpc::ClientContext context;
+    (void)stub->ListSessions(&context, {}, &sessions);
+    for (const auto& s : sessions.sessions()) {
+      if (s.session_id() == info.session_id()) after = s;
+    }
+    grpc::ClientContext close_context;
+    kerf::v1::CloseSessionRequest close;
+    close.set_session_id(info.session_id());
+    kerf::v1::CloseSessionResponse closed;
+    (void)stub->CloseSession(&close_context, close, &closed);
+  }
+  watching.join();
+  if (!cut_status.ok()) return Fail(absl::StrCat("Cut: ", cut_status.error_message()));
+
+  absl::MutexLock lock(&mutex);
+  std::printf("session %s, scene %s: %u tets before the cut, %lu after\n",
+              info.session_id().c_str(), info.scene_name().c_str(),
+              static_cast<unsigned>(info.tets()), static_cast<unsigned long>(after.tets()));
+  std::printf(
+      "cutter: %d poses sent in %.2f s, %zu frames back, pose-to-frame latency p50 %.2f ms, "
+      "p99 %.2f ms; largest tool force %.3f N\n",
+      path.poses_size(), absl::ToDoubleSeconds(absl::Now() - begin), cutter_frames,
+      Percentile(latencies_ms, 0.5), Percentile(latencies_ms, 0.99), largest_force);
+  std::printf(
+      "observer (SURFACE): %zu frames; %zu boundary triangles before, %zu after, "
+      "%zu of them on the cut\n",
+      observer_frames, first_triangles, surface.triangles.size(), surface.on_cut.size());
+  return 0;
+}
