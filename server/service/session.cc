@@ -55,15 +55,16 @@ absl::StatusOr<std::unique_ptr<Session>> Session::Create(std::string id, sim::Sc
       sim::Simulation::Create(std::move(scene));
   if (!simulation.ok()) return simulation.status();
   session->tick_seconds_ = 1.0 / options.physics_rate_hz;
-  const auto every = static_cast<std::uint64_t>(
-      std::max(1.0, std::round(options.physics_rate_hz / options.frame_rate_hz)));
+  const double frames_per_tick = options.frame_rate_hz / options.physics_rate_hz;
   {
     absl::MutexLock lock(&session->mutex_);
     session->simulation_ = *std::move(simulation);
     session->original_vertex_bound_ = session->simulation_->mesh().vertex_index_bound();
     for (int level = 0; level <= kerf::v1::FORCES; ++level) {
       session->observer_views_.push_back(std::make_unique<View>(
-          View{LevelView(static_cast<kerf::v1::Level>(level), *session->simulation_), every, {}}));
+          View{LevelView(static_cast<kerf::v1::Level>(level), *session->simulation_),
+               frames_per_tick,
+               {}}));
     }
   }
   session->thread_ = std::thread([s = session.get()] { s->Run(); });
@@ -156,11 +157,9 @@ absl::StatusOr<std::shared_ptr<Subscription>> Session::BeginCut(
     return absl::FailedPreconditionError(
         absl::StrCat("session ", id_, " already has a cutter; one at a time"));
   }
-  const auto every = frame_rate_hz == 0
-                         ? std::uint64_t{1}
-                         : static_cast<std::uint64_t>(
-                               std::max(1.0, std::round(options_.physics_rate_hz / frame_rate_hz)));
-  cutter_view_ = std::make_unique<View>(View{LevelView(level, *simulation_), every, {}});
+  const double frames_per_tick =
+      frame_rate_hz == 0 ? 1.0 : frame_rate_hz / options_.physics_rate_hz;
+  cutter_view_ = std::make_unique<View>(View{LevelView(level, *simulation_), frames_per_tick, {}});
   auto subscription = std::make_shared<Subscription>(Subscription{
       level, true, std::make_unique<FrameQueue>(options_.max_waiting_frames, start_write),
       std::move(on_end)});
@@ -360,12 +359,11 @@ void Session::Tick() {
     const bool snapshot_pending =
         std::any_of(snapshots_.begin(), snapshots_.end(),
                     [&](const SnapshotRequest* r) { return r->level == view->frames.level(); });
-    if (ticks_ % view->every_ticks != 0) continue;
+    if (!view->DueAt(ticks_)) continue;
     if (view->subscribers.empty() && !snapshot_pending) continue;
     Publish(*view, report, snapshot_pending);
   }
-  if (cutter_view_ != nullptr &&
-      (ticks_ % cutter_view_->every_ticks == 0 || withdrawn_this_tick_)) {
+  if (cutter_view_ != nullptr && (cutter_view_->DueAt(ticks_) || withdrawn_this_tick_)) {
     Publish(*cutter_view_, report, false);
   }
   if (withdrawn_this_tick_) {

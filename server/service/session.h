@@ -3,12 +3,14 @@
 //
 // The physics thread ticks at a fixed rate (default 1 kHz); a tick applies the poses that are
 // due (interpolating between poses that come slower than the ticks), advances the model by the
-// tick's period in steps of the scene's time step, and makes frames: every `frame_every` ticks
-// for observers (default 60 Hz), every tick (or at its own rate) for the cutter. Each frame is
+// tick's period in steps of the scene's time step, and makes frames at the observers' rate
+// (default 60 Hz, spread evenly over the ticks) and after every tick (or at its own rate) for
+// the cutter. Each frame is
 // made and serialized once per view and offered to every subscriber's FrameQueue, which never
 // blocks the tick.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -93,7 +95,12 @@ class Session {
  private:
   struct View {
     LevelView frames;
-    std::uint64_t every_ticks;
+    double frames_per_tick;  // at most 1
+    // Whether tick `tick` (from 1) makes a frame: frames spread evenly over the ticks.
+    bool DueAt(std::uint64_t tick) const {
+      return std::floor(static_cast<double>(tick) * frames_per_tick) !=
+             std::floor(static_cast<double>(tick - 1) * frames_per_tick);
+    }
     std::vector<std::shared_ptr<Subscription>> subscribers;
   };
   struct SnapshotRequest {
@@ -133,7 +140,7 @@ class Session {
   std::optional<cut::BladePose> last_applied_ ABSL_GUARDED_BY(mutex_);
   std::optional<cut::BladePose> before_last_applied_ ABSL_GUARDED_BY(mutex_);
   double pose_time_offset_ ABSL_GUARDED_BY(mutex_) = 0;  // simulation time - client time
-  double blade_time_ ABSL_GUARDED_BY(mutex_) = 0;  // client time of the last pose applied
+  double blade_time_ ABSL_GUARDED_BY(mutex_) = 0;        // client time of the last pose applied
   bool withdraw_when_done_ ABSL_GUARDED_BY(mutex_) = false;
   std::function<void()> on_withdrawn_ ABSL_GUARDED_BY(mutex_);
   bool withdrawn_this_tick_ ABSL_GUARDED_BY(mutex_) = false;

@@ -5,6 +5,8 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -276,9 +278,10 @@ kerf::v1::BladePose Pose(double time, double y) {
 }
 
 // Streams a straight cut across the bar at x = 23.7 mm, 2 mm per pose, 100 poses per second.
-grpc::Status CutAcross(kerf::v1::Simulator::Stub& stub, const std::string& session, int* frames) {
-  grpc::ClientContext context_storage;
-  grpc::ClientContext& context = context_storage;
+// `largest_force`, if given, receives the largest tool force of the frames (N).
+grpc::Status CutAcross(kerf::v1::Simulator::Stub& stub, const std::string& session, int* frames,
+                       double* largest_force = nullptr) {
+  grpc::ClientContext context;
   auto stream = stub.Cut(&context);
   kerf::v1::CutRequest start;
   start.mutable_start()->set_session_id(session);
@@ -294,6 +297,8 @@ grpc::Status CutAcross(kerf::v1::Simulator::Stub& stub, const std::string& sessi
   Frame frame;
   while (stream->Read(&frame)) {
     ++*frames;
+    const Eigen::Vector3d f(frame.tool_force().x(), frame.tool_force().y(), frame.tool_force().z());
+    if (largest_force != nullptr) *largest_force = std::max(*largest_force, f.norm());
   }
   return stream->Finish();
 }
@@ -311,9 +316,14 @@ TEST(SimulatorService, ObserversAtEveryLevelRebuildWhatTheSnapshotShows) {
     }
   }
   int cutter_frames = 0;
-  const grpc::Status cut = CutAcross(server.stub(), info.session_id(), &cutter_frames);
+  double largest_force = 0;
+  const grpc::Status cut =
+      CutAcross(server.stub(), info.session_id(), &cutter_frames, &largest_force);
   ASSERT_TRUE(cut.ok()) << cut.error_message();
   EXPECT_GT(cutter_frames, 5);
+  // The cutter felt the tissue: at least the cutting resistance of 100 N/m over the bar's
+  // 2 cm depth (2 N) while the blade moved through it.
+  EXPECT_GT(largest_force, 1.0);
   absl::SleepFor(absl::Milliseconds(100));  // the blade is withdrawn, the cut opens
   for (int l = 0; l < 3; ++l) {
     const Frame snapshot = Snapshot(server, info.session_id(), levels[l]);
@@ -374,6 +384,24 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
     }
     const grpc::Status status = stream->Finish();
     EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  }
+  {  // a blade that teleports 5 cm between poses 10 ms apart
+    grpc::ClientContext context;
+    auto stream = server.stub().Cut(&context);
+    kerf::v1::CutRequest request;
+    request.mutable_start()->set_session_id(info.session_id());
+    stream->Write(request);
+    *request.mutable_pose() = Pose(0, -0.005);
+    stream->Write(request);
+    *request.mutable_pose() = Pose(0.01, 0.045);
+    stream->Write(request);
+    stream->WritesDone();
+    Frame frame;
+    while (stream->Read(&frame)) {
+    }
+    const grpc::Status status = stream->Finish();
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(status.error_message().find("jumps"), std::string::npos) << status.error_message();
   }
   // The session is unharmed: a proper cut follows.
   int frames = 0;
@@ -566,6 +594,54 @@ TEST(SimulatorService, AnswersStandardHealthChecks) {
     bytes.append(reinterpret_cast<const char*>(slice.begin()), slice.size());
   }
   EXPECT_EQ(bytes, std::string("\x08\x01", 2));  // HealthCheckResponse{status: SERVING}
+}
+
+TEST(SimulatorService, ListsItsServicesThroughReflection) {
+  Server server;
+  grpc::GenericStub generic(std::shared_ptr<grpc::Channel>(&server.channel(), [](auto*) {}));
+  // One ServerReflectionRequest{list_services: ""} on the bidirectional stream.
+  class Reactor : public grpc::ClientBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer> {
+   public:
+    Reactor() : request_slice_(std::string("\x3a\x00", 2)), request_(&request_slice_, 1) {}
+    void Start() {
+      StartWrite(&request_);
+      StartRead(&response_);
+      StartWritesDone();
+      StartCall();
+    }
+    void OnReadDone(bool ok) override {
+      if (ok) {
+        std::vector<grpc::Slice> slices;
+        (void)response_.Dump(&slices);
+        for (const grpc::Slice& s : slices) {
+          bytes_.append(reinterpret_cast<const char*>(s.begin()), s.size());
+        }
+      }
+    }
+    void OnDone(const grpc::Status& status) override {
+      status_ = status;
+      done_.Notify();
+    }
+    std::string Wait() {
+      done_.WaitForNotification();
+      return status_.ok() ? bytes_ : status_.error_message();
+    }
+
+   private:
+    grpc::Slice request_slice_;
+    grpc::ByteBuffer request_, response_;
+    std::string bytes_;
+    grpc::Status status_;
+    absl::Notification done_;
+  } reactor;
+  grpc::ClientContext context;
+  generic.PrepareBidiStreamingCall(&context,
+                                   "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo",
+                                   grpc::StubOptions(), &reactor);
+  reactor.Start();
+  const std::string response = reactor.Wait();
+  EXPECT_NE(response.find("kerf.v1.Simulator"), std::string::npos) << response;
+  EXPECT_NE(response.find("grpc.health.v1.Health"), std::string::npos) << response;
 }
 
 TEST(SimulatorService, LimitsAreResourceExhausted) {
