@@ -278,9 +278,11 @@ kerf::v1::BladePose Pose(double time, double y) {
 }
 
 // Streams a straight cut across the bar at x = 23.7 mm, 2 mm per pose, 100 poses per second.
-// `largest_force`, if given, receives the largest tool force of the frames (N).
+// Sends 16 poses 10 ms apart (slower than the 1 kHz ticks, so the session interpolates).
+// `largest_force`, if given, receives the largest tool force of the frames (N), and
+// `poses_applied` what the last frame reports.
 grpc::Status CutAcross(kerf::v1::Simulator::Stub& stub, const std::string& session, int* frames,
-                       double* largest_force = nullptr) {
+                       double* largest_force = nullptr, std::uint64_t* poses_applied = nullptr) {
   grpc::ClientContext context;
   auto stream = stub.Cut(&context);
   kerf::v1::CutRequest start;
@@ -299,6 +301,7 @@ grpc::Status CutAcross(kerf::v1::Simulator::Stub& stub, const std::string& sessi
     ++*frames;
     const Eigen::Vector3d f(frame.tool_force().x(), frame.tool_force().y(), frame.tool_force().z());
     if (largest_force != nullptr) *largest_force = std::max(*largest_force, f.norm());
+    if (poses_applied != nullptr) *poses_applied = frame.statistics().poses_applied();
   }
   return stream->Finish();
 }
@@ -317,13 +320,16 @@ TEST(SimulatorService, ObserversAtEveryLevelRebuildWhatTheSnapshotShows) {
   }
   int cutter_frames = 0;
   double largest_force = 0;
+  std::uint64_t poses_applied = 0;
   const grpc::Status cut =
-      CutAcross(server.stub(), info.session_id(), &cutter_frames, &largest_force);
+      CutAcross(server.stub(), info.session_id(), &cutter_frames, &largest_force, &poses_applied);
   ASSERT_TRUE(cut.ok()) << cut.error_message();
   EXPECT_GT(cutter_frames, 5);
   // The cutter felt the tissue: at least the cutting resistance of 100 N/m over the bar's
   // 2 cm depth (2 N) while the blade moved through it.
   EXPECT_GT(largest_force, 1.0);
+  // 16 poses over 150 ms at 1 kHz ticks: interpolated poses in between.
+  EXPECT_GT(poses_applied, 100u);
   absl::SleepFor(absl::Milliseconds(100));  // the blade is withdrawn, the cut opens
   for (int l = 0; l < 3; ++l) {
     const Frame snapshot = Snapshot(server, info.session_id(), levels[l]);
@@ -335,6 +341,41 @@ TEST(SimulatorService, ObserversAtEveryLevelRebuildWhatTheSnapshotShows) {
     }
     for (int i = 0; i < 3; ++i) ExpectSeesSnapshot(*observers[3 * l + i], snapshot);
   }
+}
+
+TEST(SimulatorService, ListsScenesAndSessionsAndMakesSessionsByName) {
+  Server server;
+  kerf::v1::ListScenesResponse scenes;
+  {
+    grpc::ClientContext context;
+    ASSERT_TRUE(server.stub().ListScenes(&context, {}, &scenes).ok());
+  }
+  std::set<std::string> names;
+  for (const auto& scene : scenes.scenes()) {
+    names.insert(scene.name());
+    EXPECT_FALSE(scene.description().empty()) << scene.name();
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"bar-cantilever", "lattice-tension"}));
+  kerf::v1::CreateSessionRequest request;
+  request.set_scene_name("bar-cantilever");
+  kerf::v1::SessionInfo info;
+  {
+    grpc::ClientContext context;
+    ASSERT_TRUE(server.stub().CreateSession(&context, request, &info).ok());
+  }
+  EXPECT_EQ(info.scene_name(), "bar-cantilever");
+  EXPECT_EQ(info.levels_size(), 2);  // the scene needs SURFACE and VOLUME only
+  kerf::v1::ListSessionsResponse sessions;
+  grpc::ClientContext context;
+  ASSERT_TRUE(server.stub().ListSessions(&context, {}, &sessions).ok());
+  ASSERT_EQ(sessions.sessions_size(), 1);
+  EXPECT_EQ(sessions.sessions(0).session_id(), info.session_id());
+  // A level the scene does not offer is refused.
+  Observer forces(server.stub(), info.session_id(), kerf::v1::FORCES);
+  const std::optional<grpc::Status> end = forces.EndStatus();
+  ASSERT_TRUE(end.has_value());
+  EXPECT_EQ(end->error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_EQ(end->error_message(), "scene bar-cantilever does not offer FORCES");
 }
 
 TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
