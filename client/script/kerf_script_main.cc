@@ -23,6 +23,8 @@
 
 ABSL_FLAG(std::string, server, "127.0.0.1:50051", "the kerf-server to cut against, host:port");
 ABSL_FLAG(std::string, scene, "", "embedded scene for the session (empty: the server's default)");
+ABSL_FLAG(std::string, tls_ca, "",
+          "PEM root certificate(s) to trust: connect with TLS (plaintext when empty)");
 ABSL_FLAG(double, settle_seconds, 1.0,
           "how long to let the session's tissue settle (held and loaded) before cutting");
 ABSL_FLAG(std::string, path, "", "blade path, JSON: {\"poses\": [{\"time\", \"tip\", \"heel\"}]}");
@@ -68,8 +70,20 @@ int main(int argc, char** argv) {
   }
   if (path.poses().empty()) return Fail("the path has no poses");
 
-  auto stub = kerf::v1::Simulator::NewStub(
-      grpc::CreateChannel(absl::GetFlag(FLAGS_server), grpc::InsecureChannelCredentials()));
+  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
+  if (!absl::GetFlag(FLAGS_tls_ca).empty()) {
+    std::ifstream ca(absl::GetFlag(FLAGS_tls_ca));
+    std::stringstream pem;
+    pem << ca.rdbuf();
+    if (!ca || pem.str().empty()) {
+      return Fail(absl::StrCat("cannot read --tls_ca '", absl::GetFlag(FLAGS_tls_ca), "'"));
+    }
+    grpc::SslCredentialsOptions options;
+    options.pem_root_certs = pem.str();
+    credentials = grpc::SslCredentials(options);
+  }
+  auto stub =
+      kerf::v1::Simulator::NewStub(grpc::CreateChannel(absl::GetFlag(FLAGS_server), credentials));
   kerf::v1::CreateSessionRequest create;
   create.set_scene_name(absl::GetFlag(FLAGS_scene));
   kerf::v1::SessionInfo info;

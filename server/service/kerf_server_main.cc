@@ -24,6 +24,10 @@ ABSL_FLAG(int, max_observers, 64, "observers per session");
 ABSL_FLAG(double, physics_rate_hz, 1000, "default physics tick rate of a session");
 ABSL_FLAG(double, frame_rate_hz, 60, "default frame rate for observers");
 ABSL_FLAG(int, max_message_bytes, 4 << 20, "largest request accepted, bytes");
+ABSL_FLAG(std::string, tls_cert, "", "PEM certificate chain: serve TLS (with --tls_key)");
+ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls_cert");
+ABSL_FLAG(bool, allow_remote_plaintext, false,
+          "serve plaintext on a non-loopback address (refused otherwise)");
 
 int main(int argc, char** argv) {
   absl::SetProgramUsageMessage("kerf-server [--listen=HOST:PORT] [--default_scene=NAME] ...");
@@ -54,11 +58,14 @@ int main(int argc, char** argv) {
   kerf::service::ServerConfig config;
   config.listen = absl::GetFlag(FLAGS_listen);
   config.max_message_bytes = absl::GetFlag(FLAGS_max_message_bytes);
+  config.tls_certificate_file = absl::GetFlag(FLAGS_tls_cert);
+  config.tls_key_file = absl::GetFlag(FLAGS_tls_key);
+  config.allow_remote_plaintext = absl::GetFlag(FLAGS_allow_remote_plaintext);
   absl::StatusOr<kerf::service::RunningServer> running =
       kerf::service::StartServer(config, &service);
   if (!running.ok()) {
-    std::fprintf(stderr, "kerf-server: %s\n", running.status().ToString().c_str());
-    return 1;
+    std::fprintf(stderr, "kerf-server: %s\n", std::string(running.status().message()).c_str());
+    return absl::IsInvalidArgument(running.status()) ? 2 : 1;
   }
   grpc::Server* server = running->server.get();
   const int port = running->port;

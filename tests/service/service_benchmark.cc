@@ -62,7 +62,7 @@ class EchoService final : public kerf::test::Echo::CallbackService {
 // A message about the size of a blade pose, bounced 2,000 times, one in flight.
 void BM_EchoRoundTrip(benchmark::State& state) {
   EchoService service;
-  absl::StatusOr<RunningServer> server = StartServer({"127.0.0.1:0"}, &service);
+  absl::StatusOr<RunningServer> server = StartServer(LoopbackConfig(), &service);
   auto stub = kerf::test::Echo::NewStub(grpc::CreateChannel(
       absl::StrCat("127.0.0.1:", server->port), grpc::InsecureChannelCredentials()));
   std::vector<double> round_trips;
@@ -106,7 +106,7 @@ void BM_PoseToFrame(benchmark::State& state) {
   const int observer_count = static_cast<int>(state.range(0));
   SessionRegistry registry({});
   SimulatorService service(&registry);
-  absl::StatusOr<RunningServer> server = StartServer({"127.0.0.1:0"}, &service);
+  absl::StatusOr<RunningServer> server = StartServer(LoopbackConfig(), &service);
   auto channel = grpc::CreateChannel(absl::StrCat("127.0.0.1:", server->port),
                                      grpc::InsecureChannelCredentials());
   auto stub = kerf::v1::Simulator::NewStub(channel);

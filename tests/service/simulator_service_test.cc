@@ -52,7 +52,7 @@ class Server {
  public:
   explicit Server(RegistryOptions options = {})
       : registry_(std::move(options)), service_(&registry_) {
-    absl::StatusOr<RunningServer> running = StartServer({"127.0.0.1:0"}, &service_);
+    absl::StatusOr<RunningServer> running = StartServer(LoopbackConfig(), &service_);
     EXPECT_TRUE(running.ok()) << running.status();
     server_ = std::move(running->server);
     port_ = running->port;
