@@ -86,13 +86,14 @@ int main(int argc, char** argv) {
       kerf::v1::Simulator::NewStub(grpc::CreateChannel(absl::GetFlag(FLAGS_server), credentials));
   kerf::v1::CreateSessionRequest create;
   create.set_scene_name(absl::GetFlag(FLAGS_scene));
-  kerf::v1::SessionInfo info;
+  kerf::v1::CreateSessionResponse created;
   {
     grpc::ClientContext context;
     context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
-    const grpc::Status s = stub->CreateSession(&context, create, &info);
+    const grpc::Status s = stub->CreateSession(&context, create, &created);
     if (!s.ok()) return Fail(absl::StrCat("CreateSession: ", s.error_message()));
   }
+  const kerf::v1::SessionInfo& info = created.session();
 
   // The observer.
   absl::Mutex mutex;
@@ -102,6 +103,7 @@ int main(int argc, char** argv) {
   kerf::v1::ObserveRequest observe;
   observe.set_session_id(info.session_id());
   observe.set_level(kerf::v1::SURFACE);
+  observe.set_token(created.observer_token());
   auto observer = stub->Observe(&observe_context, observe);
   std::thread watching([&] {
     kerf::v1::Frame frame;
@@ -119,6 +121,7 @@ int main(int argc, char** argv) {
   kerf::v1::CutRequest start;
   start.mutable_start()->set_session_id(info.session_id());
   start.mutable_start()->set_level(kerf::v1::FORCES);
+  start.mutable_start()->set_token(created.cutter_token());
   cut->Write(start);
   std::vector<absl::Time> sent(path.poses_size());
   std::vector<double> latencies_ms;
@@ -172,6 +175,7 @@ int main(int argc, char** argv) {
     grpc::ClientContext close_context;
     kerf::v1::CloseSessionRequest close;
     close.set_session_id(info.session_id());
+    close.set_token(created.cutter_token());
     kerf::v1::CloseSessionResponse closed;
     (void)stub->CloseSession(&close_context, close, &closed);
   }

@@ -28,6 +28,7 @@
 #include "kerf/v1/simulator.pb.h"
 #include "service/frame_queue.h"
 #include "service/level_view.h"
+#include "service/session_tokens.h"
 #include "sim/scene.h"
 #include "sim/simulation.h"
 
@@ -63,6 +64,7 @@ class Session {
   void Close(const absl::Status& why);
 
   const std::string& id() const { return id_; }
+  const SessionTokens& tokens() const { return tokens_; }
 
   // Adds an observer at `level`; `start_write` writes one frame (see FrameQueue).
   // FAILED_PRECONDITION for a level the scene does not offer, RESOURCE_EXHAUSTED at the
@@ -109,7 +111,8 @@ class Session {
     kerf::v1::Frame frame;
   };
 
-  Session(std::string id, const SessionOptions& options) : id_(std::move(id)), options_(options) {}
+  Session(std::string id, const SessionOptions& options)
+      : id_(std::move(id)), options_(options), tokens_(SessionTokens::Generate()) {}
   void Run();
   void Tick() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   void ApplyDuePoses(double until) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
@@ -120,6 +123,7 @@ class Session {
 
   const std::string id_;
   const SessionOptions options_;
+  const SessionTokens tokens_;
   std::string scene_name_;
   std::vector<kerf::v1::Level> levels_;
   std::uint32_t original_vertex_bound_ = 0;

@@ -101,6 +101,10 @@ class ObserveReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
       writer_->Finish(ToGrpcStatus(session.status()));
       return;
     }
+    if (absl::Status s = (*session)->tokens().Authorize(Role::kObserver, parsed.token()); !s.ok()) {
+      writer_->Finish(ToGrpcStatus(s));
+      return;
+    }
     session_ = *std::move(session);
     absl::StatusOr<std::shared_ptr<Subscription>> subscription = session_->Observe(
         parsed.level(), [w = writer_](const SerializedFrame& f) { w->Write(f); },
@@ -196,6 +200,10 @@ class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::
       absl::StatusOr<std::shared_ptr<Session>> session =
           registry_->Find(request.start().session_id());
       if (!session.ok()) return session.status();
+      if (absl::Status s = (*session)->tokens().Authorize(Role::kCutter, request.start().token());
+          !s.ok()) {
+        return s;
+      }
       session_ = *std::move(session);
       absl::StatusOr<std::shared_ptr<Subscription>> subscription = session_->BeginCut(
           request.start().level(), request.start().frame_rate_hz(),
@@ -257,9 +265,13 @@ grpc::ServerUnaryReactor* SimulatorService::ListScenes(grpc::CallbackServerConte
 
 grpc::ServerUnaryReactor* SimulatorService::CreateSession(
     grpc::CallbackServerContext* context, const kerf::v1::CreateSessionRequest* request,
-    kerf::v1::SessionInfo* response) {
+    kerf::v1::CreateSessionResponse* response) {
   absl::StatusOr<std::shared_ptr<Session>> session = registry_->Create(*request);
-  if (session.ok()) *response = (*session)->Info();
+  if (session.ok()) {
+    *response->mutable_session() = (*session)->Info();
+    response->set_cutter_token((*session)->tokens().cutter());
+    response->set_observer_token((*session)->tokens().observer());
+  }
   return FinishUnary(context, session.status());
 }
 
@@ -273,6 +285,11 @@ grpc::ServerUnaryReactor* SimulatorService::ListSessions(grpc::CallbackServerCon
 grpc::ServerUnaryReactor* SimulatorService::CloseSession(
     grpc::CallbackServerContext* context, const kerf::v1::CloseSessionRequest* request,
     kerf::v1::CloseSessionResponse*) {
+  absl::StatusOr<std::shared_ptr<Session>> session = registry_->Find(request->session_id());
+  if (!session.ok()) return FinishUnary(context, session.status());
+  if (absl::Status s = (*session)->tokens().Authorize(Role::kCutter, request->token()); !s.ok()) {
+    return FinishUnary(context, s);
+  }
   return FinishUnary(context, registry_->Close(request->session_id()));
 }
 
@@ -281,6 +298,9 @@ grpc::ServerUnaryReactor* SimulatorService::GetSnapshot(grpc::CallbackServerCont
                                                         kerf::v1::Frame* response) {
   absl::StatusOr<std::shared_ptr<Session>> session = registry_->Find(request->session_id());
   if (!session.ok()) return FinishUnary(context, session.status());
+  if (absl::Status s = (*session)->tokens().Authorize(Role::kObserver, request->token()); !s.ok()) {
+    return FinishUnary(context, s);
+  }
   // Waits for the session's next frame (milliseconds) on this thread, within the deadline.
   const absl::Duration timeout =
       std::min(kSnapshotTimeout, absl::FromChrono(context->deadline()) - absl::Now());

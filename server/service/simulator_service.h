@@ -32,7 +32,7 @@ class SimulatorService final : public SimulatorBase {
                                        kerf::v1::ListScenesResponse* response) override;
   grpc::ServerUnaryReactor* CreateSession(grpc::CallbackServerContext* context,
                                           const kerf::v1::CreateSessionRequest* request,
-                                          kerf::v1::SessionInfo* response) override;
+                                          kerf::v1::CreateSessionResponse* response) override;
   grpc::ServerUnaryReactor* ListSessions(grpc::CallbackServerContext* context,
                                          const kerf::v1::ListSessionsRequest* request,
                                          kerf::v1::ListSessionsResponse* response) override;

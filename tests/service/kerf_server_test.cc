@@ -36,17 +36,19 @@ TEST(KerfServer, ServesAndShutsDownGracefullyOnSigterm) {
 
   auto stub = kerf::v1::Simulator::NewStub(
       grpc::CreateChannel(absl::StrCat("127.0.0.1:", port), grpc::InsecureChannelCredentials()));
-  kerf::v1::SessionInfo info;
+  kerf::v1::CreateSessionResponse created;
   {
     grpc::ClientContext context;
-    ASSERT_TRUE(stub->CreateSession(&context, {}, &info).ok());  // the default scene
+    ASSERT_TRUE(stub->CreateSession(&context, {}, &created).ok());  // the default scene
   }
+  const kerf::v1::SessionInfo& info = created.session();
   EXPECT_EQ(info.scene_name(), "lattice-tension");
   EXPECT_EQ(info.tets(), 576u);
   grpc::ClientContext observe_context;
   kerf::v1::ObserveRequest request;
   request.set_session_id(info.session_id());
   request.set_level(kerf::v1::SURFACE);
+  request.set_token(created.observer_token());
   auto reader = stub->Observe(&observe_context, request);
   kerf::v1::Frame frame;
   ASSERT_TRUE(reader->Read(&frame));

@@ -117,10 +117,10 @@ void BM_PoseToFrame(benchmark::State& state) {
   for (auto _ : state) {
     kerf::v1::CreateSessionRequest create;
     *create.mutable_scene() = LatticeScene();
-    kerf::v1::SessionInfo info;
+    kerf::v1::CreateSessionResponse created;
     {
       grpc::ClientContext context;
-      if (!stub->CreateSession(&context, create, &info).ok()) {
+      if (!stub->CreateSession(&context, create, &created).ok()) {
         state.SkipWithError("CreateSession failed");
         return;
       }
@@ -136,8 +136,9 @@ void BM_PoseToFrame(benchmark::State& state) {
       grpc::ClientContext* context = contexts.back().get();
       threads.emplace_back([&, tally, context] {
         kerf::v1::ObserveRequest request;
-        request.set_session_id(info.session_id());
+        request.set_session_id(created.session().session_id());
         request.set_level(tally->level);
+        request.set_token(created.observer_token());
         auto reader = stub->Observe(context, request);
         Frame frame;
         while (reader->Read(&frame)) {
@@ -160,8 +161,9 @@ void BM_PoseToFrame(benchmark::State& state) {
     grpc::ClientContext cut_context;
     auto stream = stub->Cut(&cut_context);
     kerf::v1::CutRequest start;
-    start.mutable_start()->set_session_id(info.session_id());
+    start.mutable_start()->set_session_id(created.session().session_id());
     start.mutable_start()->set_level(kerf::v1::FORCES);
+    start.mutable_start()->set_token(created.cutter_token());
     stream->Write(start);
     std::thread reader([&] {
       Frame frame;

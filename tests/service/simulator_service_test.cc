@@ -48,6 +48,17 @@ constexpr char kBarScene[] = R"pb(
   }
 )pb";
 
+// The tokens of the sessions the tests made, by session id.
+struct Tokens {
+  std::string cutter, observer;
+};
+Tokens& TokensOf(const std::string& session) {
+  static absl::Mutex mutex(absl::kConstInit);
+  static auto* tokens = new std::map<std::string, Tokens>;
+  absl::MutexLock lock(&mutex);
+  return (*tokens)[session];
+}
+
 class Server {
  public:
   explicit Server(RegistryOptions options = {})
@@ -72,11 +83,12 @@ class Server {
     kerf::v1::CreateSessionRequest request;
     request.set_frame_rate_hz(frame_rate_hz);
     *request.mutable_scene() = *sim::ParseSceneText(scene, "test");
-    kerf::v1::SessionInfo info;
+    kerf::v1::CreateSessionResponse created;
     grpc::ClientContext context;
-    const grpc::Status status = stub_->CreateSession(&context, request, &info);
+    const grpc::Status status = stub_->CreateSession(&context, request, &created);
     EXPECT_TRUE(status.ok()) << status.error_message();
-    return info;
+    TokensOf(created.session().session_id()) = {created.cutter_token(), created.observer_token()};
+    return created.session();
   }
 
  private:
@@ -154,6 +166,7 @@ class Observer {
     kerf::v1::ObserveRequest request;
     request.set_session_id(session);
     request.set_level(level);
+    request.set_token(TokensOf(session).observer);
     reader_ = stub.Observe(&context_, request);
     thread_ = std::thread([this, stall] {
       absl::SleepFor(stall);
@@ -241,6 +254,7 @@ Frame Snapshot(Server& server, const std::string& session, kerf::v1::Level level
   kerf::v1::GetSnapshotRequest request;
   request.set_session_id(session);
   request.set_level(level);
+  request.set_token(TokensOf(session).observer);
   Frame snapshot;
   grpc::ClientContext context;
   const grpc::Status status = server.stub().GetSnapshot(&context, request, &snapshot);
@@ -287,6 +301,7 @@ grpc::Status CutAcross(kerf::v1::Simulator::Stub& stub, const std::string& sessi
   auto stream = stub.Cut(&context);
   kerf::v1::CutRequest start;
   start.mutable_start()->set_session_id(session);
+  start.mutable_start()->set_token(TokensOf(session).cutter);
   start.mutable_start()->set_level(kerf::v1::FORCES);
   start.mutable_start()->set_frame_rate_hz(100);
   stream->Write(start);
@@ -358,11 +373,13 @@ TEST(SimulatorService, ListsScenesAndSessionsAndMakesSessionsByName) {
   EXPECT_EQ(names, (std::set<std::string>{"bar-cantilever", "lattice-tension"}));
   kerf::v1::CreateSessionRequest request;
   request.set_scene_name("bar-cantilever");
-  kerf::v1::SessionInfo info;
+  kerf::v1::CreateSessionResponse created;
   {
     grpc::ClientContext context;
-    ASSERT_TRUE(server.stub().CreateSession(&context, request, &info).ok());
+    ASSERT_TRUE(server.stub().CreateSession(&context, request, &created).ok());
   }
+  const kerf::v1::SessionInfo& info = created.session();
+  TokensOf(info.session_id()) = {created.cutter_token(), created.observer_token()};
   EXPECT_EQ(info.scene_name(), "bar-cantilever");
   EXPECT_EQ(info.levels_size(), 2);  // the scene needs SURFACE and VOLUME only
   kerf::v1::ListSessionsResponse sessions;
@@ -376,6 +393,79 @@ TEST(SimulatorService, ListsScenesAndSessionsAndMakesSessionsByName) {
   ASSERT_TRUE(end.has_value());
   EXPECT_EQ(end->error_code(), grpc::StatusCode::FAILED_PRECONDITION);
   EXPECT_EQ(end->error_message(), "scene bar-cantilever does not offer FORCES");
+}
+
+TEST(SimulatorService, TokensGrantTheirRolesOnly) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  const kerf::v1::SessionInfo other = server.CreateBarSession();
+  const Tokens tokens = TokensOf(info.session_id());
+  EXPECT_EQ(tokens.cutter.size(), 64u);
+  EXPECT_EQ(tokens.observer.size(), 64u);
+  EXPECT_NE(tokens.cutter, tokens.observer);
+  EXPECT_NE(tokens.cutter, TokensOf(other.session_id()).cutter);
+  const auto observe_with = [&](const std::string& token) {
+    grpc::ClientContext context;
+    kerf::v1::ObserveRequest request;
+    request.set_session_id(info.session_id());
+    request.set_level(kerf::v1::SURFACE);
+    request.set_token(token);
+    auto reader = server.stub().Observe(&context, request);
+    Frame frame;
+    if (reader->Read(&frame)) {  // served: that is all this wants to know
+      context.TryCancel();
+      while (reader->Read(&frame)) {
+      }
+      (void)reader->Finish();
+      return grpc::Status::OK;
+    }
+    return reader->Finish();
+  };
+  EXPECT_EQ(observe_with("").error_code(), grpc::StatusCode::UNAUTHENTICATED);
+  const grpc::Status wrong = observe_with(TokensOf(other.session_id()).observer);
+  EXPECT_EQ(wrong.error_code(), grpc::StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(wrong.error_message(), "the token does not belong to this session");
+  EXPECT_TRUE(observe_with(tokens.observer).ok());
+  EXPECT_TRUE(observe_with(tokens.cutter).ok());
+  {  // the observer token cannot cut
+    grpc::ClientContext context;
+    auto stream = server.stub().Cut(&context);
+    kerf::v1::CutRequest start;
+    start.mutable_start()->set_session_id(info.session_id());
+    start.mutable_start()->set_token(tokens.observer);
+    stream->Write(start);
+    stream->WritesDone();
+    Frame frame;
+    while (stream->Read(&frame)) {
+    }
+    const grpc::Status status = stream->Finish();
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::PERMISSION_DENIED);
+    EXPECT_EQ(status.error_message(), "the observer token cannot cut or close");
+  }
+  for (const std::string& token : {std::string(), tokens.observer}) {  // nor close
+    kerf::v1::CloseSessionRequest request;
+    request.set_session_id(info.session_id());
+    request.set_token(token);
+    kerf::v1::CloseSessionResponse response;
+    grpc::ClientContext context;
+    EXPECT_EQ(
+        server.stub().CloseSession(&context, request, &response).error_code(),
+        token.empty() ? grpc::StatusCode::UNAUTHENTICATED : grpc::StatusCode::PERMISSION_DENIED);
+  }
+  // Listing sessions shows no token.
+  kerf::v1::ListSessionsResponse sessions;
+  grpc::ClientContext context;
+  ASSERT_TRUE(server.stub().ListSessions(&context, {}, &sessions).ok());
+  const std::string listed = sessions.SerializeAsString();
+  EXPECT_EQ(listed.find(tokens.cutter), std::string::npos);
+  EXPECT_EQ(listed.find(tokens.observer), std::string::npos);
+}
+
+TEST(SessionTokens, ComparesWholeTokens) {
+  EXPECT_TRUE(ConstantTimeEquals("abc", "abc"));
+  EXPECT_FALSE(ConstantTimeEquals("abc", "abd"));
+  EXPECT_FALSE(ConstantTimeEquals("abc", "ab"));
+  EXPECT_FALSE(ConstantTimeEquals("", "a"));
 }
 
 TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
@@ -394,7 +484,7 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
   {  // unknown scene
     kerf::v1::CreateSessionRequest request;
     request.set_scene_name("liver-of-nobody");
-    kerf::v1::SessionInfo created;
+    kerf::v1::CreateSessionResponse created;
     grpc::ClientContext context;
     const grpc::Status status = server.stub().CreateSession(&context, request, &created);
     EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
@@ -403,7 +493,7 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
     kerf::v1::CreateSessionRequest request;
     *request.mutable_scene() = *sim::ParseSceneText(kBarScene, "test");
     request.mutable_scene()->mutable_material()->set_poisson_ratio(0.7);
-    kerf::v1::SessionInfo created;
+    kerf::v1::CreateSessionResponse created;
     grpc::ClientContext context;
     const grpc::Status status = server.stub().CreateSession(&context, request, &created);
     EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
@@ -415,6 +505,7 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
     auto stream = server.stub().Cut(&context);
     kerf::v1::CutRequest start;
     start.mutable_start()->set_session_id(info.session_id());
+    start.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
     stream->Write(start);
     kerf::v1::CutRequest bad;
     *bad.mutable_pose() = Pose(0, std::nan(""));
@@ -431,6 +522,7 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
     auto stream = server.stub().Cut(&context);
     kerf::v1::CutRequest request;
     request.mutable_start()->set_session_id(info.session_id());
+    request.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
     stream->Write(request);
     *request.mutable_pose() = Pose(0, -0.005);
     stream->Write(request);
@@ -457,6 +549,7 @@ TEST(SimulatorService, PosesFarAheadOfTheSessionAreRefused) {
   auto stream = server.stub().Cut(&context);
   kerf::v1::CutRequest request;
   request.mutable_start()->set_session_id(info.session_id());
+  request.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
   stream->Write(request);
   *request.mutable_pose() = Pose(0, -0.005);
   stream->Write(request);
@@ -480,6 +573,7 @@ TEST(SimulatorService, AnObserverPastItsDeadlineIsDropped) {
   kerf::v1::ObserveRequest request;
   request.set_session_id(info.session_id());
   request.set_level(kerf::v1::SURFACE);
+  request.set_token(TokensOf(info.session_id()).observer);
   auto reader = server.stub().Observe(&context, request);
   Frame frame;
   int frames = 0;
@@ -541,6 +635,7 @@ TEST(SimulatorService, ACutterThatDisconnectsMidCutLeavesAWorkingSession) {
     auto stream = server.stub().Cut(&context);
     kerf::v1::CutRequest start;
     start.mutable_start()->set_session_id(info.session_id());
+    start.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
     stream->Write(start);
     for (int k = 0; k <= 8; ++k) {  // the blade stops inside the bar
       kerf::v1::CutRequest request;
@@ -574,6 +669,7 @@ TEST(SimulatorService, OneCutterAtATime) {
   auto first = server.stub().Cut(&first_context);
   kerf::v1::CutRequest start;
   start.mutable_start()->set_session_id(info.session_id());
+  start.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
   first->Write(start);
   Frame frame;
   ASSERT_TRUE(first->Read(&frame));  // the first cutter holds the blade
@@ -600,6 +696,7 @@ TEST(SimulatorService, ClosingASessionEndsItsStreams) {
   ExpectSeesSnapshot(observer, Snapshot(server, info.session_id(), kerf::v1::SURFACE));
   kerf::v1::CloseSessionRequest request;
   request.set_session_id(info.session_id());
+  request.set_token(TokensOf(info.session_id()).cutter);
   kerf::v1::CloseSessionResponse response;
   grpc::ClientContext context;
   ASSERT_TRUE(server.stub().CloseSession(&context, request, &response).ok());
@@ -692,7 +789,7 @@ TEST(SimulatorService, LimitsAreResourceExhausted) {
   server.CreateBarSession();
   kerf::v1::CreateSessionRequest request;
   *request.mutable_scene() = *sim::ParseSceneText(kBarScene, "test");
-  kerf::v1::SessionInfo created;
+  kerf::v1::CreateSessionResponse created;
   grpc::ClientContext context;
   EXPECT_EQ(server.stub().CreateSession(&context, request, &created).error_code(),
             grpc::StatusCode::RESOURCE_EXHAUSTED);
