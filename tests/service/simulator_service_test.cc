@@ -795,6 +795,19 @@ TEST(SimulatorService, LimitsAreResourceExhausted) {
             grpc::StatusCode::RESOURCE_EXHAUSTED);
 }
 
+TEST(SimulatorService, OversizedRequestsAreRefused) {
+  Server server;  // the default cap: 4 MB
+  kerf::v1::CreateSessionRequest request;
+  *request.mutable_scene() = *sim::ParseSceneText(kBarScene, "test");
+  request.mutable_scene()->set_description(std::string(5 << 20, 'x'));
+  kerf::v1::CreateSessionResponse created;
+  grpc::ClientContext context;
+  const grpc::Status status = server.stub().CreateSession(&context, request, &created);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(status.error_message().find("message larger than max"), std::string::npos)
+      << status.error_message();
+}
+
 TEST(SimulatorService, ObserverLimitIsResourceExhausted) {
   RegistryOptions options;
   options.session.max_subscribers = 2;

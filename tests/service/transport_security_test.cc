@@ -46,9 +46,10 @@ struct Certificate {
   ~Certificate() { (void)RunCommand("rm -rf " + directory); }
 };
 
+// By address (the certificate names 127.0.0.1), so that no name is resolved.
 grpc::Status ListScenes(const std::shared_ptr<grpc::ChannelCredentials>& credentials, int port) {
   auto stub = kerf::v1::Simulator::NewStub(
-      grpc::CreateChannel(absl::StrCat("localhost:", port), credentials));
+      grpc::CreateChannel(absl::StrCat("127.0.0.1:", port), credentials));
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
   kerf::v1::ListScenesResponse scenes;
