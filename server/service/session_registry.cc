@@ -19,12 +19,22 @@ std::string NewSessionId() {
 }
 
 absl::StatusOr<sim::Scene> SceneOf(const kerf::v1::CreateSessionRequest& request,
-                                   const std::string& default_scene) {
+                                   const RegistryOptions& options) {
+  const std::string& default_scene = options.default_scene;
   if (request.has_scene()) {
     if (request.scene().mesh().has_file()) {
       return absl::InvalidArgumentError(
           "scene.mesh.file: the server reads no files for a client; send a lattice or use an "
           "embedded scene");
+    }
+    // Checked before anything is built: a client must not make the server run out of memory.
+    const kerf::v1::BoxLattice& lattice = request.scene().mesh().lattice();
+    const double tets = 6.0 * std::max(lattice.cells_x(), 0) * std::max(lattice.cells_y(), 0) *
+                        std::max(lattice.cells_z(), 0);
+    if (tets > static_cast<double>(options.max_scene_tets)) {
+      return absl::ResourceExhaustedError(
+          absl::StrFormat("scene.mesh.lattice: %.0f tets is over this server's limit of %d", tets,
+                          options.max_scene_tets));
     }
     return sim::BuildScene(request.scene(), ".");
   }
@@ -48,7 +58,7 @@ absl::StatusOr<std::shared_ptr<Session>> SessionRegistry::Create(
           "the server holds its limit of ", options_.max_sessions, " sessions; close one first"));
     }
   }
-  absl::StatusOr<sim::Scene> scene = SceneOf(request, options_.default_scene);
+  absl::StatusOr<sim::Scene> scene = SceneOf(request, options_);
   if (!scene.ok()) return scene.status();
   SessionOptions session_options = options_.session;
   if (request.physics_rate_hz() != 0) session_options.physics_rate_hz = request.physics_rate_hz();

@@ -16,6 +16,7 @@ namespace kerf::service {
 
 struct RegistryOptions {
   std::size_t max_sessions = 16;
+  std::size_t max_scene_tets = 2'000'000;  // largest lattice a client may ask for
   std::string default_scene = "lattice-tension";
   SessionOptions session;  // defaults for rates and limits
 };

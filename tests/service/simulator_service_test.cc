@@ -500,6 +500,19 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
     EXPECT_NE(status.error_message().find("poisson_ratio"), std::string::npos)
         << status.error_message();
   }
+  {  // a lattice that would not fit in memory, refused before anything is built
+    kerf::v1::CreateSessionRequest request;
+    *request.mutable_scene() = *sim::ParseSceneText(kBarScene, "test");
+    request.mutable_scene()->mutable_mesh()->mutable_lattice()->set_cells_x(1000);
+    request.mutable_scene()->mutable_mesh()->mutable_lattice()->set_cells_y(1000);
+    request.mutable_scene()->mutable_mesh()->mutable_lattice()->set_cells_z(1000);
+    kerf::v1::CreateSessionResponse created;
+    grpc::ClientContext context;
+    const grpc::Status status = server.stub().CreateSession(&context, request, &created);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+    EXPECT_EQ(status.error_message(),
+              "scene.mesh.lattice: 6000000000 tets is over this server's limit of 2000000");
+  }
   {  // a NaN pose ends the cut stream with INVALID_ARGUMENT
     grpc::ClientContext context;
     auto stream = server.stub().Cut(&context);
