@@ -149,16 +149,8 @@ bool Cutter::BladeInside(TetId t, const BladePose& pose) const {
   const mesh::TetVertices& v = mesh_->tet(t);
   std::array<Eigen::Vector3d, 4> x;
   for (int i = 0; i < 4; ++i) x[i] = mesh_->current_position(v[i]);
-  const double volume = geometry::SignedVolume(x[0], x[1], x[2], x[3]);
   for (const Eigen::Vector3d& end : {pose.tip, pose.heel}) {
-    // Inside when it is on the inner side of all four faces.
-    bool inside = true;
-    for (int k = 0; k < 4 && inside; ++k) {
-      std::array<Eigen::Vector3d, 4> y = x;
-      y[k] = end;
-      inside = geometry::SignedVolume(y[0], y[1], y[2], y[3]) * volume >= 0;
-    }
-    if (inside) return true;
+    if (geometry::ContainsPoint(x[0], x[1], x[2], x[3], end)) return true;
   }
   for (const auto& face : mesh::kTetFaces) {
     if (geometry::IntersectSegmentTriangle(pose.tip, pose.heel, x[face[0]], x[face[1]],

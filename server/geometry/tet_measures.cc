@@ -80,4 +80,11 @@ TetMeasures MeasureTet(const Vector3d& a, const Vector3d& b, const Vector3d& c, 
   return m;
 }
 
+bool ContainsPoint(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                   const Eigen::Vector3d& d, const Eigen::Vector3d& p) {
+  const double volume = SignedVolume(a, b, c, d);
+  return SignedVolume(p, b, c, d) * volume >= 0 && SignedVolume(a, p, c, d) * volume >= 0 &&
+         SignedVolume(a, b, p, d) * volume >= 0 && SignedVolume(a, b, c, p) * volume >= 0;
+}
+
 }  // namespace kerf::geometry

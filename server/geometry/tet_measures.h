@@ -14,6 +14,11 @@ namespace kerf::geometry {
 double SignedVolume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                     const Eigen::Vector3d& d);
 
+// Whether p lies inside the tet (a, b, c, d) or on its boundary, whatever its orientation:
+// replacing any corner by p does not flip the sign of the volume.
+bool ContainsPoint(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                   const Eigen::Vector3d& d, const Eigen::Vector3d& p);
+
 // The six interior dihedral angles, in degrees, at edges ab, ac, ad, bc, bd, cd.
 // A degenerate (flat) tet has angles of 0 or 180; a zero-area face gives NaN-free 0.
 std::array<double, 6> DihedralAnglesDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

@@ -1,6 +1,7 @@
 #include "service/level_view.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cstring>
 
 #include "mesh/boundary_surface.h"
@@ -46,20 +47,19 @@ void FillHeader(kerf::v1::Level level, std::uint64_t sequence, std::uint64_t top
   *frame->mutable_statistics() = report.statistics;
 }
 
-// The elastic force -K u on every vertex slot.
-std::vector<Eigen::Vector3d> ElasticForces(const sim::Simulation& simulation) {
-  std::vector<Eigen::Vector3d> f(simulation.state().displacement.size());
-  simulation.model().MultiplyStiffness(simulation.state().displacement, f);
-  for (Eigen::Vector3d& x : f) x = -x;
-  return f;
-}
-
 bool MadeByCut(const std::array<std::uint32_t, 3>& v, std::uint32_t original_vertex_bound) {
   return v[0] >= original_vertex_bound && v[1] >= original_vertex_bound &&
          v[2] >= original_vertex_bound;
 }
 
 }  // namespace
+
+std::vector<Eigen::Vector3d> ComputeElasticForces(const sim::Simulation& simulation) {
+  std::vector<Eigen::Vector3d> f(simulation.state().displacement.size());
+  simulation.model().MultiplyStiffness(simulation.state().displacement, f);
+  for (Eigen::Vector3d& x : f) x = -x;
+  return f;
+}
 
 void AppendFloat32(const Eigen::Vector3d& v, std::string* out) {
   static_assert(std::endian::native == std::endian::little, "frames are little-endian");
@@ -91,12 +91,12 @@ kerf::v1::Frame LevelView::Advance(const TickReport& report) {
                            frame.removed_elements_size() + frame.added_elements_size() >
                        0;
   if (changed) ++topology_version_;
-  started_ = true;
   synced_ = simulation_->mesh().change_log().Mark();
   ++sequence_;
   last_report_ = report;
+  last_report_.nodal_forces = {};
   FillHeader(level_, sequence_, topology_version_, report, &frame);
-  FillArrays(&frame);
+  FillArrays(report, &frame);
   last_positions_ = frame.positions();
   last_forces_ = frame.nodal_forces();
   return frame;
@@ -119,8 +119,8 @@ void LevelView::UpdateTets(kerf::v1::Frame* frame) {
   const mesh::TetMesh& m = simulation_->mesh();
   std::vector<TetId> removed, added;
   absl::StatusOr<mesh::MeshChanges> changes =
-      started_ ? m.change_log().ChangesSince(synced_)
-               : absl::StatusOr<mesh::MeshChanges>(absl::OutOfRangeError("first frame"));
+      sequence_ != 0 ? m.change_log().ChangesSince(synced_)
+                     : absl::StatusOr<mesh::MeshChanges>(absl::OutOfRangeError("first frame"));
   if (changes.ok()) {
     removed = std::move(changes->removed_tets);
     added = std::move(changes->added_tets);
@@ -177,8 +177,8 @@ void LevelView::UpdateSurface(kerf::v1::Frame* frame) {
   // The faces whose state may have changed: those of removed and added tets (all, at first).
   std::vector<std::pair<TetId, int>> faces;
   absl::StatusOr<mesh::MeshChanges> changes =
-      started_ ? m.change_log().ChangesSince(synced_)
-               : absl::StatusOr<mesh::MeshChanges>(absl::OutOfRangeError("first frame"));
+      sequence_ != 0 ? m.change_log().ChangesSince(synced_)
+                     : absl::StatusOr<mesh::MeshChanges>(absl::OutOfRangeError("first frame"));
   std::vector<FaceKey> candidates;
   const auto add_faces_of = [&](const mesh::TetVertices& v) {
     for (const auto& face : mesh::kTetFaces) {
@@ -245,13 +245,13 @@ void LevelView::UpdateSurface(kerf::v1::Frame* frame) {
   frame->mutable_added_vertices()->Add(added.begin(), added.end());
 }
 
-void LevelView::FillArrays(kerf::v1::Frame* frame) const {
+void LevelView::FillArrays(const TickReport& report, kerf::v1::Frame* frame) const {
   const mesh::TetMesh& m = simulation_->mesh();
   if (level_ == kerf::v1::FORCES) {
-    const std::vector<Eigen::Vector3d> f = ElasticForces(*simulation_);
+    assert(report.nodal_forces.size() >= m.vertex_index_bound());
     std::string* out = frame->mutable_nodal_forces();
     out->reserve(12 * vertices_.size());
-    for (const std::uint32_t v : vertices_) AppendFloat32(f[v], out);
+    for (const std::uint32_t v : vertices_) AppendFloat32(report.nodal_forces[v], out);
     return;
   }
   std::string* out = frame->mutable_positions();
@@ -311,8 +311,9 @@ kerf::v1::Frame MakeSnapshot(kerf::v1::Level level, const sim::Simulation& simul
   }
   frame.mutable_added_vertices()->Add(vertices.begin(), vertices.end());
   if (level == kerf::v1::FORCES) {
-    const std::vector<Eigen::Vector3d> f = ElasticForces(simulation);
-    for (const std::uint32_t v : vertices) AppendFloat32(f[v], frame.mutable_nodal_forces());
+    for (const std::uint32_t v : vertices) {
+      AppendFloat32(report.nodal_forces[v], frame.mutable_nodal_forces());
+    }
   } else {
     for (const std::uint32_t v : vertices) {
       AppendFloat32(m.current_position(VertexId{v}), frame.mutable_positions());

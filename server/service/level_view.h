@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,13 @@ struct TickReport {
   Eigen::Vector3d tool_force = Eigen::Vector3d::Zero();   // N
   Eigen::Vector3d tool_torque = Eigen::Vector3d::Zero();  // N m
   kerf::v1::StepStatistics statistics;
+  // The elastic force -K u on every vertex slot (N), computed once per tick by the session
+  // when a FORCES frame is due; empty otherwise. Valid during the tick only.
+  std::span<const Eigen::Vector3d> nodal_forces;
 };
+
+// -K u on every vertex slot of the simulation. O(vertices + edges).
+std::vector<Eigen::Vector3d> ComputeElasticForces(const sim::Simulation& simulation);
 
 class LevelView {
  public:
@@ -58,12 +65,11 @@ class LevelView {
   void AddTriangle(const FaceKey& key, const std::array<std::uint32_t, 3>& vertices,
                    kerf::v1::Frame* frame);
   void RemoveTriangle(const FaceKey& key, kerf::v1::Frame* frame);
-  void FillArrays(kerf::v1::Frame* frame) const;
+  void FillArrays(const TickReport& report, kerf::v1::Frame* frame) const;
 
   kerf::v1::Level level_;
   const sim::Simulation* simulation_;
   std::uint32_t original_vertex_bound_;  // vertices at or past it were made by cuts
-  bool started_ = false;
   mesh::ChangeMark synced_;
   std::uint64_t sequence_ = 0;
   std::uint64_t topology_version_ = 0;
@@ -73,13 +79,13 @@ class LevelView {
   absl::flat_hash_map<std::uint32_t, std::uint32_t> triangles_using_vertex_;
   std::uint32_t next_triangle_id_ = 0;
   std::vector<std::uint32_t> vertices_;  // the view's vertices, increasing
-  TickReport last_report_;
+  TickReport last_report_;               // without its nodal forces (they do not outlive the tick)
   std::string last_positions_, last_forces_;
 };
 
 // A keyframe made afresh from the model, independently of any view (for snapshots, and to
 // check what subscribers reconstruct): triangles are numbered 0.. in ExtractBoundarySurface's
-// order. O(mesh).
+// order; FORCES takes the report's nodal forces. O(mesh).
 kerf::v1::Frame MakeSnapshot(kerf::v1::Level level, const sim::Simulation& simulation,
                              std::uint32_t original_vertex_bound, std::uint64_t sequence,
                              const TickReport& report);

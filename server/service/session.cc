@@ -355,17 +355,26 @@ void Session::Tick() {
   s.set_cut_tets(simulation_->cutter() ? simulation_->cutter()->statistics().cut_tets : 0);
   s.set_poses_applied(poses_applied_);
 
+  // The views that make a frame this tick; the nodal forces are computed once for them all.
+  std::vector<std::pair<View*, bool>> due;  // and whether a snapshot waits for it
   for (auto& view : observer_views_) {
     const bool snapshot_pending =
         std::any_of(snapshots_.begin(), snapshots_.end(),
                     [&](const SnapshotRequest* r) { return r->level == view->frames.level(); });
     if (!view->DueAt(ticks_)) continue;
     if (view->subscribers.empty() && !snapshot_pending) continue;
-    Publish(*view, report, snapshot_pending);
+    due.emplace_back(view.get(), snapshot_pending);
   }
   if (cutter_view_ != nullptr && (cutter_view_->DueAt(ticks_) || withdrawn_this_tick_)) {
-    Publish(*cutter_view_, report, false);
+    due.emplace_back(cutter_view_.get(), false);
   }
+  std::vector<Eigen::Vector3d> nodal_forces;
+  if (std::any_of(due.begin(), due.end(),
+                  [](const auto& d) { return d.first->frames.level() == kerf::v1::FORCES; })) {
+    nodal_forces = ComputeElasticForces(*simulation_);
+    report.nodal_forces = nodal_forces;
+  }
+  for (const auto& [view, snapshot_pending] : due) Publish(*view, report, snapshot_pending);
   if (withdrawn_this_tick_) {
     withdrawn_this_tick_ = false;
     if (on_withdrawn_) {  // the cut is over: the blade is free for the next cutter at once

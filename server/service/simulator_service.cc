@@ -87,35 +87,22 @@ class FrameWriter {
   std::optional<grpc::Status> waiting_finish_ ABSL_GUARDED_BY(mutex_);
 };
 
-class ObserveReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
- public:
-  ObserveReactor(SessionRegistry* registry, const grpc::ByteBuffer* request)
-      : writer_(std::make_shared<FrameWriter<ObserveReactor>>(this)) {
-    kerf::v1::ObserveRequest parsed;
-    if (!ParseByteBuffer(*request, &parsed)) {
-      writer_->Finish({grpc::StatusCode::INVALID_ARGUMENT, "malformed ObserveRequest"});
-      return;
-    }
-    absl::StatusOr<std::shared_ptr<Session>> session = registry->Find(parsed.session_id());
-    if (!session.ok()) {
-      writer_->Finish(ToGrpcStatus(session.status()));
-      return;
-    }
-    if (absl::Status s = (*session)->tokens().Authorize(Role::kObserver, parsed.token()); !s.ok()) {
-      writer_->Finish(ToGrpcStatus(s));
-      return;
-    }
-    session_ = *std::move(session);
-    absl::StatusOr<std::shared_ptr<Subscription>> subscription = session_->Observe(
-        parsed.level(), [w = writer_](const SerializedFrame& f) { w->Write(f); },
-        [w = writer_](const absl::Status& s) { w->Finish(ToGrpcStatus(s)); });
-    if (!subscription.ok()) {
-      writer_->Finish(ToGrpcStatus(subscription.status()));
-      return;
-    }
-    SetSubscription(*std::move(subscription));
-  }
+// The session `id`, when `token` grants `role` in it (NOT_FOUND, UNAUTHENTICATED or
+// PERMISSION_DENIED otherwise).
+absl::StatusOr<std::shared_ptr<Session>> FindAuthorized(const SessionRegistry& registry,
+                                                        const std::string& id, Role role,
+                                                        absl::string_view token) {
+  absl::StatusOr<std::shared_ptr<Session>> session = registry.Find(id);
+  if (!session.ok()) return session.status();
+  if (absl::Status s = (*session)->tokens().Authorize(role, token); !s.ok()) return s;
+  return session;
+}
 
+// What the Observe and Cut reactors share: the writer of their frames, their session and
+// subscription, and how a stream ends.
+template <typename Base>
+class FrameStreamReactor : public Base {
+ public:
   void OnWriteDone(bool ok) override {
     const auto subscription = subscription_of();
     if (writer_->WriteDone(ok) && subscription) subscription->queue->WriteDone();
@@ -124,12 +111,22 @@ class ObserveReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
   void OnDone() override {
     writer_->Done();
     if (const auto subscription = subscription_of(); subscription) {
-      session_->Unsubscribe(subscription);
+      session_->Unsubscribe(subscription);  // for the cutter, withdraws the blade
     }
     delete this;
   }
 
- private:
+ protected:
+  FrameStreamReactor() : writer_(std::make_shared<FrameWriter<FrameStreamReactor>>(this)) {}
+
+  // The callbacks a Session subscription takes: write a frame, end the stream.
+  std::function<void(const SerializedFrame&)> frame_writer() const {
+    return [w = writer_](const SerializedFrame& f) { w->Write(f); };
+  }
+  std::function<void(const absl::Status&)> stream_ender() const {
+    return [w = writer_](const absl::Status& s) { w->Finish(ToGrpcStatus(s)); };
+  }
+
   std::shared_ptr<Subscription> subscription_of() {
     absl::MutexLock lock(&mutex_);
     return subscription_;
@@ -139,18 +136,43 @@ class ObserveReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
     subscription_ = std::move(subscription);
   }
 
-  std::shared_ptr<FrameWriter<ObserveReactor>> writer_;
-  std::shared_ptr<Session> session_;
-  absl::Mutex mutex_;  // write reactions may run while the constructor finishes
+  std::shared_ptr<FrameWriter<FrameStreamReactor>> writer_;
+  std::shared_ptr<Session> session_;  // set once, before any subscription
+
+ private:
+  absl::Mutex mutex_;  // read and write reactions, and the constructor, run concurrently
   std::shared_ptr<Subscription> subscription_ ABSL_GUARDED_BY(mutex_);
 };
 
-class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer> {
+class ObserveReactor final : public FrameStreamReactor<grpc::ServerWriteReactor<grpc::ByteBuffer>> {
  public:
-  explicit CutReactor(SessionRegistry* registry)
-      : registry_(registry), writer_(std::make_shared<FrameWriter<CutReactor>>(this)) {
-    StartRead(&request_);
+  ObserveReactor(SessionRegistry* registry, const grpc::ByteBuffer* request) {
+    kerf::v1::ObserveRequest parsed;
+    if (!ParseByteBuffer(*request, &parsed)) {
+      writer_->Finish({grpc::StatusCode::INVALID_ARGUMENT, "malformed ObserveRequest"});
+      return;
+    }
+    absl::StatusOr<std::shared_ptr<Session>> session =
+        FindAuthorized(*registry, parsed.session_id(), Role::kObserver, parsed.token());
+    if (!session.ok()) {
+      writer_->Finish(ToGrpcStatus(session.status()));
+      return;
+    }
+    session_ = *std::move(session);
+    absl::StatusOr<std::shared_ptr<Subscription>> subscription =
+        session_->Observe(parsed.level(), frame_writer(), stream_ender());
+    if (!subscription.ok()) {
+      writer_->Finish(ToGrpcStatus(subscription.status()));
+      return;
+    }
+    SetSubscription(*std::move(subscription));
   }
+};
+
+class CutReactor final
+    : public FrameStreamReactor<grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>> {
+ public:
+  explicit CutReactor(SessionRegistry* registry) : registry_(registry) { StartRead(&request_); }
 
   void OnReadDone(bool ok) override {
     if (!ok) {  // the client is done sending: its poses are applied, then the blade withdrawn
@@ -178,37 +200,18 @@ class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::
     StartRead(&request_);
   }
 
-  void OnWriteDone(bool ok) override {
-    const auto subscription = subscription_of();
-    if (writer_->WriteDone(ok) && subscription) subscription->queue->WriteDone();
-  }
-  void OnCancel() override { writer_->Finish(grpc::Status::CANCELLED); }
-  void OnDone() override {
-    writer_->Done();
-    if (const auto subscription = subscription_of(); subscription) {
-      session_->Unsubscribe(subscription);  // withdraws the blade
-    }
-    delete this;
-  }
-
  private:
   absl::Status Handle(const kerf::v1::CutRequest& request) {
     if (subscription_of() == nullptr) {
       if (!request.has_start()) {
         return absl::InvalidArgumentError("the first CutRequest must be `start`");
       }
-      absl::StatusOr<std::shared_ptr<Session>> session =
-          registry_->Find(request.start().session_id());
+      absl::StatusOr<std::shared_ptr<Session>> session = FindAuthorized(
+          *registry_, request.start().session_id(), Role::kCutter, request.start().token());
       if (!session.ok()) return session.status();
-      if (absl::Status s = (*session)->tokens().Authorize(Role::kCutter, request.start().token());
-          !s.ok()) {
-        return s;
-      }
       session_ = *std::move(session);
       absl::StatusOr<std::shared_ptr<Subscription>> subscription = session_->BeginCut(
-          request.start().level(), request.start().frame_rate_hz(),
-          [w = writer_](const SerializedFrame& f) { w->Write(f); },
-          [w = writer_](const absl::Status& s) { w->Finish(ToGrpcStatus(s)); });
+          request.start().level(), request.start().frame_rate_hz(), frame_writer(), stream_ender());
       if (!subscription.ok()) return subscription.status();
       SetSubscription(*std::move(subscription));
       return absl::OkStatus();
@@ -219,21 +222,8 @@ class CutReactor final : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::
     return session_->SubmitPose(request.pose());
   }
 
-  std::shared_ptr<Subscription> subscription_of() {
-    absl::MutexLock lock(&mutex_);
-    return subscription_;
-  }
-  void SetSubscription(std::shared_ptr<Subscription> subscription) {
-    absl::MutexLock lock(&mutex_);
-    subscription_ = std::move(subscription);
-  }
-
   SessionRegistry* registry_;
-  std::shared_ptr<FrameWriter<CutReactor>> writer_;
   grpc::ByteBuffer request_;
-  std::shared_ptr<Session> session_;  // set by the read reactions only
-  absl::Mutex mutex_;                 // read and write reactions run concurrently
-  std::shared_ptr<Subscription> subscription_ ABSL_GUARDED_BY(mutex_);
 };
 
 grpc::ServerUnaryReactor* FinishUnary(grpc::CallbackServerContext* context,
@@ -285,22 +275,18 @@ grpc::ServerUnaryReactor* SimulatorService::ListSessions(grpc::CallbackServerCon
 grpc::ServerUnaryReactor* SimulatorService::CloseSession(
     grpc::CallbackServerContext* context, const kerf::v1::CloseSessionRequest* request,
     kerf::v1::CloseSessionResponse*) {
-  absl::StatusOr<std::shared_ptr<Session>> session = registry_->Find(request->session_id());
-  if (!session.ok()) return FinishUnary(context, session.status());
-  if (absl::Status s = (*session)->tokens().Authorize(Role::kCutter, request->token()); !s.ok()) {
-    return FinishUnary(context, s);
-  }
-  return FinishUnary(context, registry_->Close(request->session_id()));
+  const absl::StatusOr<std::shared_ptr<Session>> session =
+      FindAuthorized(*registry_, request->session_id(), Role::kCutter, request->token());
+  return FinishUnary(context,
+                     session.ok() ? registry_->Close(request->session_id()) : session.status());
 }
 
 grpc::ServerUnaryReactor* SimulatorService::GetSnapshot(grpc::CallbackServerContext* context,
                                                         const kerf::v1::GetSnapshotRequest* request,
                                                         kerf::v1::Frame* response) {
-  absl::StatusOr<std::shared_ptr<Session>> session = registry_->Find(request->session_id());
+  absl::StatusOr<std::shared_ptr<Session>> session =
+      FindAuthorized(*registry_, request->session_id(), Role::kObserver, request->token());
   if (!session.ok()) return FinishUnary(context, session.status());
-  if (absl::Status s = (*session)->tokens().Authorize(Role::kObserver, request->token()); !s.ok()) {
-    return FinishUnary(context, s);
-  }
   // Waits for the session's next frame (milliseconds) on this thread, within the deadline.
   const absl::Duration timeout =
       std::min(kSnapshotTimeout, absl::FromChrono(context->deadline()) - absl::Now());

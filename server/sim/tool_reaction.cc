@@ -11,15 +11,9 @@ namespace {
 
 // Whether p is inside the tet (current positions), faces included.
 bool Inside(const mesh::TetMesh& m, mesh::TetId t, const Eigen::Vector3d& p) {
-  std::array<Eigen::Vector3d, 4> x;
-  for (int i = 0; i < 4; ++i) x[i] = m.current_position(m.tet(t)[i]);
-  const double volume = geometry::SignedVolume(x[0], x[1], x[2], x[3]);
-  for (int k = 0; k < 4; ++k) {
-    std::array<Eigen::Vector3d, 4> y = x;
-    y[k] = p;
-    if (geometry::SignedVolume(y[0], y[1], y[2], y[3]) * volume < 0) return false;
-  }
-  return true;
+  const mesh::TetVertices& v = m.tet(t);
+  return geometry::ContainsPoint(m.current_position(v[0]), m.current_position(v[1]),
+                                 m.current_position(v[2]), m.current_position(v[3]), p);
 }
 
 }  // namespace

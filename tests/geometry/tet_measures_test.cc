@@ -17,6 +17,19 @@ TEST(SignedVolume, UnitCornerTetIsOneSixthAndFlipsWithOrientation) {
   EXPECT_DOUBLE_EQ(SignedVolume(kO, kX, kY, Vector3d(0.3, 0.3, 0)), 0.0);
 }
 
+TEST(ContainsPoint, InsideAndOnTheBoundaryButNotOutsideInEitherOrientation) {
+  const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
+  for (const bool flipped : {false, true}) {
+    const Eigen::Vector3d& p = flipped ? c : b;
+    const Eigen::Vector3d& q = flipped ? b : c;
+    EXPECT_TRUE(ContainsPoint(a, p, q, d, {0.2, 0.2, 0.2}));
+    EXPECT_TRUE(ContainsPoint(a, p, q, d, {0.5, 0.5, 0}));  // on a face
+    EXPECT_TRUE(ContainsPoint(a, p, q, d, a));              // a corner
+    EXPECT_FALSE(ContainsPoint(a, p, q, d, {0.5, 0.5, 0.1}));
+    EXPECT_FALSE(ContainsPoint(a, p, q, d, {-0.01, 0.2, 0.2}));
+  }
+}
+
 TEST(DihedralAngles, CornerTetHasThreeRightAnglesAndThreeOf54_7) {
   // Edges at the origin (ab, ac, ad) have 90 degrees; the far edges have
   // acos(1/sqrt(3)) = 54.7356 degrees.

@@ -194,20 +194,16 @@ class Observer {
     context_.TryCancel();
     if (thread_.joinable()) thread_.join();
   }
-  // Waits until a frame with at least this sequence came; the view at exactly it.
+  // Waits (up to 10 s) until a frame with at least this sequence came; the view at exactly it.
   std::optional<View> At(std::uint64_t sequence) {
     absl::MutexLock lock(&mutex_);
-    mutex_.AwaitWithTimeout(absl::Condition(
-                                +[](Observer* o) { return o->last_sequence_ >= o->wanted_; }, this),
-                            absl::Seconds(10));
-    (void)sequence;
+    const auto reached = [&]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
+      return last_sequence_ >= sequence;
+    };
+    mutex_.AwaitWithTimeout(absl::Condition(&reached), absl::Seconds(10));
     const auto it = by_sequence_.find(sequence);
     if (it == by_sequence_.end()) return std::nullopt;
     return it->second;
-  }
-  void Want(std::uint64_t sequence) {
-    absl::MutexLock lock(&mutex_);
-    wanted_ = sequence;
   }
   std::vector<std::string> errors() {
     absl::MutexLock lock(&mutex_);
@@ -240,7 +236,6 @@ class Observer {
   absl::Mutex mutex_;
   std::map<std::uint64_t, View> by_sequence_;
   std::uint64_t last_sequence_ = 0;
-  std::uint64_t wanted_ = std::numeric_limits<std::uint64_t>::max();
   std::vector<std::string> errors_;
   int keyframes_ = 0;
   int frames_ = 0;
@@ -267,7 +262,6 @@ void ExpectSeesSnapshot(Observer& observer, const Frame& snapshot) {
   View expected;
   std::string error;
   ASSERT_TRUE(expected.Apply(snapshot, &error)) << error;
-  observer.Want(snapshot.sequence());
   const std::optional<View> seen = observer.At(snapshot.sequence());
   ASSERT_TRUE(seen.has_value()) << "no frame " << snapshot.sequence();
   const std::vector<std::string> errors = observer.errors();
@@ -281,6 +275,15 @@ void ExpectSeesSnapshot(Observer& observer, const Frame& snapshot) {
   if (snapshot.level() == kerf::v1::SURFACE) {
     EXPECT_EQ(seen->Triangles(), expected.Triangles());
   }
+}
+
+// Reads a stream to its end; its status.
+template <typename Stream>
+grpc::Status DrainAndFinish(Stream& stream) {
+  Frame frame;
+  while (stream.Read(&frame)) {
+  }
+  return stream.Finish();
 }
 
 kerf::v1::BladePose Pose(double time, double y) {
@@ -435,10 +438,7 @@ TEST(SimulatorService, TokensGrantTheirRolesOnly) {
     start.mutable_start()->set_token(tokens.observer);
     stream->Write(start);
     stream->WritesDone();
-    Frame frame;
-    while (stream->Read(&frame)) {
-    }
-    const grpc::Status status = stream->Finish();
+    const grpc::Status status = DrainAndFinish(*stream);
     EXPECT_EQ(status.error_code(), grpc::StatusCode::PERMISSION_DENIED);
     EXPECT_EQ(status.error_message(), "the observer token cannot cut or close");
   }
@@ -524,10 +524,7 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
     *bad.mutable_pose() = Pose(0, std::nan(""));
     stream->Write(bad);
     stream->WritesDone();
-    Frame frame;
-    while (stream->Read(&frame)) {
-    }
-    const grpc::Status status = stream->Finish();
+    const grpc::Status status = DrainAndFinish(*stream);
     EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   }
   {  // a blade that teleports 5 cm between poses 10 ms apart
@@ -542,10 +539,7 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
     *request.mutable_pose() = Pose(0.01, 0.045);
     stream->Write(request);
     stream->WritesDone();
-    Frame frame;
-    while (stream->Read(&frame)) {
-    }
-    const grpc::Status status = stream->Finish();
+    const grpc::Status status = DrainAndFinish(*stream);
     EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
     EXPECT_NE(status.error_message().find("jumps"), std::string::npos) << status.error_message();
   }
@@ -569,10 +563,7 @@ TEST(SimulatorService, PosesFarAheadOfTheSessionAreRefused) {
   *request.mutable_pose() = Pose(5, -0.004);  // 5 s later on the client's clock, at once
   stream->Write(request);
   stream->WritesDone();
-  Frame frame;
-  while (stream->Read(&frame)) {
-  }
-  const grpc::Status status = stream->Finish();
+  const grpc::Status status = DrainAndFinish(*stream);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_NE(status.error_message().find("send poses in real time"), std::string::npos)
       << status.error_message();
