@@ -54,37 +54,55 @@ std::uint32_t Crc32c(absl::string_view data) {
   return crc ^ 0xffffffffu;
 }
 
-absl::StatusOr<JournalWriter> JournalWriter::Open(const std::string& path,
-                                                  absl::Duration sync_interval) {
+absl::StatusOr<std::unique_ptr<JournalWriter>> JournalWriter::Open(const std::string& path,
+                                                                   absl::Duration sync_interval) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
   if (fd < 0) return ErrnoError("open", path);
-  return JournalWriter(fd, path, sync_interval);
+  return std::unique_ptr<JournalWriter>(new JournalWriter(fd, path, sync_interval));
 }
 
-JournalWriter::JournalWriter(JournalWriter&& other) noexcept
-    : fd_(std::exchange(other.fd_, -1)),
-      path_(std::move(other.path_)),
-      sync_interval_(other.sync_interval_),
-      last_sync_(other.last_sync_),
-      failed_(other.failed_) {}
+JournalWriter::JournalWriter(int fd, std::string path, absl::Duration sync_interval)
+    : fd_(fd), path_(std::move(path)), sync_interval_(sync_interval) {
+  syncer_ = std::thread([this] { SyncLoop(); });
+}
 
 JournalWriter::~JournalWriter() {
-  if (fd_ < 0) return;
+  {
+    absl::MutexLock lock(&mutex_);
+    closing_ = true;
+  }
+  syncer_.join();
   ::fdatasync(fd_);
   ::close(fd_);
 }
 
-absl::Status JournalWriter::Append(const kerf::v1::JournalRecord& record) {
+void JournalWriter::SyncLoop() {
+  absl::MutexLock lock(&mutex_);
+  while (!closing_) {
+    mutex_.AwaitWithTimeout(absl::Condition(&closing_), sync_interval_);
+    if (!dirty_) continue;
+    dirty_ = false;
+    mutex_.Unlock();
+    ::fdatasync(fd_);  // a failure shows at the next write, which Append reports
+    mutex_.Lock();
+  }
+}
+
+absl::Status JournalWriter::Append(std::span<const kerf::v1::JournalRecord> records) {
   if (failed_) return absl::InternalError(absl::StrCat("journal '", path_, "' failed earlier"));
-  const std::string payload = record.SerializeAsString();
-  std::string frame(8, '\0');
-  PutU32(static_cast<std::uint32_t>(payload.size()), frame.data());
-  PutU32(Crc32c(payload), frame.data() + 4);
-  frame += payload;
-  // One write per record, so that a crash tears at most the last one.
+  std::string frames;
+  for (const kerf::v1::JournalRecord& record : records) {
+    const std::string payload = record.SerializeAsString();
+    char header[8];
+    PutU32(static_cast<std::uint32_t>(payload.size()), header);
+    PutU32(Crc32c(payload), header + 4);
+    frames.append(header, sizeof(header));
+    frames += payload;
+  }
+  // One write, so that a crash tears at most the end of it.
   std::size_t written = 0;
-  while (written < frame.size()) {
-    const ssize_t n = ::write(fd_, frame.data() + written, frame.size() - written);
+  while (written < frames.size()) {
+    const ssize_t n = ::write(fd_, frames.data() + written, frames.size() - written);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       failed_ = true;
@@ -92,13 +110,8 @@ absl::Status JournalWriter::Append(const kerf::v1::JournalRecord& record) {
     }
     written += static_cast<std::size_t>(n);
   }
-  if (absl::Now() - last_sync_ >= sync_interval_) {
-    if (::fdatasync(fd_) != 0) {
-      failed_ = true;
-      return ErrnoError("sync", path_);
-    }
-    last_sync_ = absl::Now();
-  }
+  absl::MutexLock lock(&mutex_);
+  dirty_ = true;
   return absl::OkStatus();
 }
 
@@ -150,6 +163,7 @@ JournalContents ParseJournal(absl::string_view bytes, absl::string_view name) {
     contents.records.push_back(std::move(record));
     at += 8 + length;
     contents.good_bytes = at;
+    contents.record_ends.push_back(at);
   }
   return contents;
 }

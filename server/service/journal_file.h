@@ -1,17 +1,22 @@
 // The journal file of a session: records framed as [length u32 LE][CRC-32C u32 LE][payload]
 // (see proto/kerf/v1/journal.proto), appended one at a time, read back up to the last good one.
 //
-// Flush policy: Append() writes the record to the operating system before it returns, so a
-// record survives the server process being killed; the file is fdatasync'ed at most every
-// `sync_interval` (default 100 ms) and on close, so at most that much is lost to a power cut.
+// Flush policy: Append() writes the records to the operating system before it returns, so a
+// record survives the server process being killed; a thread of the writer fdatasyncs the file
+// every `sync_interval` (default 100 ms) when something was written, and on close, so at most
+// that much is lost to a power cut.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
 #include "kerf/v1/journal.pb.h"
 
@@ -22,31 +27,39 @@ std::uint32_t Crc32c(absl::string_view data);
 
 class JournalWriter {
  public:
-  // Opens `path` for appending, creating it. INTERNAL naming the path and the reason.
-  static absl::StatusOr<JournalWriter> Open(const std::string& path,
-                                            absl::Duration sync_interval = absl::Milliseconds(100));
-  JournalWriter(JournalWriter&& other) noexcept;
-  JournalWriter& operator=(JournalWriter&&) = delete;
+  // Opens `path` for appending (mode 0600), creating it. INTERNAL naming the path and the reason.
+  static absl::StatusOr<std::unique_ptr<JournalWriter>> Open(
+      const std::string& path, absl::Duration sync_interval = absl::Milliseconds(100));
+  JournalWriter(const JournalWriter&) = delete;
+  JournalWriter& operator=(const JournalWriter&) = delete;
   ~JournalWriter();  // syncs and closes
 
-  // Appends one record (written to the operating system before returning). INTERNAL on a
-  // write error, after which the writer refuses further records.
-  absl::Status Append(const kerf::v1::JournalRecord& record);
+  // Appends records in one write (to the operating system before returning; the sync to the
+  // disk happens on the writer's own thread, so the caller never waits for the disk). INTERNAL
+  // on a write error, after which the writer refuses further records.
+  absl::Status Append(std::span<const kerf::v1::JournalRecord> records);
+  absl::Status Append(const kerf::v1::JournalRecord& record) { return Append({&record, 1}); }
+
+  const std::string& path() const { return path_; }
 
  private:
-  JournalWriter(int fd, std::string path, absl::Duration sync_interval)
-      : fd_(fd), path_(std::move(path)), sync_interval_(sync_interval) {}
+  JournalWriter(int fd, std::string path, absl::Duration sync_interval);
+  void SyncLoop();
 
-  int fd_;
-  std::string path_;
-  absl::Duration sync_interval_;
-  absl::Time last_sync_ = absl::Now();
-  bool failed_ = false;
+  const int fd_;
+  const std::string path_;
+  const absl::Duration sync_interval_;
+  bool failed_ = false;  // on the appending thread
+  absl::Mutex mutex_;
+  bool dirty_ ABSL_GUARDED_BY(mutex_) = false;
+  bool closing_ ABSL_GUARDED_BY(mutex_) = false;
+  std::thread syncer_;
 };
 
 struct JournalContents {
   std::vector<kerf::v1::JournalRecord> records;
-  std::uint64_t good_bytes = 0;  // where the last good record ends
+  std::vector<std::uint64_t> record_ends;  // the byte offset where each record ends
+  std::uint64_t good_bytes = 0;            // where the last good record ends
   std::uint64_t file_bytes = 0;
   std::string warning;  // empty, or what was cut off at the end and why
 };

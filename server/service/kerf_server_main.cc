@@ -1,10 +1,13 @@
 // kerf-server: serves kerf.v1.Simulator over gRPC (with standard health checking and server
 // reflection). With no arguments it listens on 127.0.0.1:50051 with the embedded default
-// scene. SIGINT or SIGTERM shut it down gracefully: every stream ends with UNAVAILABLE.
+// scene, journaling sessions to ./kerf-journal and restoring those found there. SIGINT or
+// SIGTERM shut it down gracefully: every stream ends with UNAVAILABLE, and the sessions stay in
+// the journal to be restored at the next start.
 #include <grpcpp/grpcpp.h>
 
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 
 #include "absl/flags/flag.h"
@@ -28,6 +31,9 @@ ABSL_FLAG(std::string, tls_cert, "", "PEM certificate chain: serve TLS (with --t
 ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls_cert");
 ABSL_FLAG(bool, allow_remote_plaintext, false,
           "serve plaintext on a non-loopback address (refused otherwise)");
+ABSL_FLAG(std::string, journal_dir, "kerf-journal",
+          "directory of the session journals (made if missing); sessions found there are "
+          "restored at start; empty: no journal");
 
 int main(int argc, char** argv) {
   absl::SetProgramUsageMessage("kerf-server [--listen=HOST:PORT] [--default_scene=NAME] ...");
@@ -46,12 +52,35 @@ int main(int argc, char** argv) {
   options.session.max_subscribers = static_cast<std::size_t>(absl::GetFlag(FLAGS_max_observers));
   options.session.physics_rate_hz = absl::GetFlag(FLAGS_physics_rate_hz);
   options.session.frame_rate_hz = absl::GetFlag(FLAGS_frame_rate_hz);
+  options.journal_dir = absl::GetFlag(FLAGS_journal_dir);
+  if (!options.journal_dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(options.journal_dir, error);
+    std::filesystem::permissions(options.journal_dir, std::filesystem::perms::owner_all, error);
+    if (error || !std::filesystem::is_directory(options.journal_dir)) {
+      std::fprintf(stderr, "kerf-server: cannot use --journal_dir=%s: %s\n",
+                   options.journal_dir.c_str(), error.message().c_str());
+      return 2;
+    }
+  }
   kerf::service::SessionRegistry registry(options);
   // The default scene must load: fail at start, not at the first request.
   if (absl::StatusOr<kerf::sim::Scene> scene = kerf::sim::LoadScene(options.default_scene);
       !scene.ok()) {
     std::fprintf(stderr, "kerf-server: %s\n", scene.status().ToString().c_str());
     return 2;
+  }
+  for (const kerf::service::RestoreOutcome& outcome : registry.Restore()) {
+    if (!outcome.warning.empty()) {
+      std::fprintf(stderr, "kerf-server: warning: %s\n", outcome.warning.c_str());
+    }
+    if (!outcome.status.ok()) {
+      std::fprintf(stderr, "kerf-server: not restored: %s\n",
+                   std::string(outcome.status.message()).c_str());
+    } else if (outcome.restored) {
+      std::printf("kerf-server: restored %s (%llu ticks)\n", outcome.journal.c_str(),
+                  static_cast<unsigned long long>(outcome.ticks));
+    }
   }
   kerf::service::SimulatorService service(&registry);
 

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "mesh/boundary_surface.h"
+#include "service/sha256.h"
 
 namespace kerf::service {
 namespace {
@@ -73,7 +74,8 @@ LevelView::LevelView(kerf::v1::Level level, const sim::Simulation& simulation)
       simulation_(&simulation),
       original_vertex_bound_(simulation.mesh().vertex_index_bound()) {}
 
-kerf::v1::Frame LevelView::Advance(const TickReport& report) {
+kerf::v1::Frame LevelView::Advance(const TickReport& report, std::uint64_t sequence) {
+  assert(sequence > sequence_);
   kerf::v1::Frame frame;
   switch (level_) {
     case kerf::v1::SURFACE:
@@ -92,7 +94,7 @@ kerf::v1::Frame LevelView::Advance(const TickReport& report) {
                        0;
   if (changed) ++topology_version_;
   synced_ = simulation_->mesh().change_log().Mark();
-  ++sequence_;
+  sequence_ = sequence;
   last_report_ = report;
   last_report_.nodal_forces = {};
   FillHeader(level_, sequence_, topology_version_, report, &frame);
@@ -280,6 +282,28 @@ kerf::v1::Frame LevelView::Keyframe() const {
   return frame;
 }
 
+std::string ModelSha256(const sim::Simulation& simulation) {
+  const mesh::TetMesh& m = simulation.mesh();
+  const fem::DynamicState& state = simulation.state();
+  std::string bytes;
+  const auto put = [&bytes](const auto& value) {
+    bytes.append(reinterpret_cast<const char*>(&value), sizeof(value));
+  };
+  put(state.time);
+  for (const VertexId v : m.vertices()) {
+    put(Index(v));
+    for (const Eigen::Vector3d& x : {m.rest_position(v), m.current_position(v),
+                                     state.displacement[Index(v)], state.velocity[Index(v)]}) {
+      for (int k = 0; k < 3; ++k) put(x[k]);
+    }
+  }
+  for (const TetId t : m.tets()) {
+    put(Index(t));
+    for (const VertexId v : m.tet(t)) put(Index(v));
+  }
+  return Sha256(bytes);
+}
+
 kerf::v1::Frame MakeSnapshot(kerf::v1::Level level, const sim::Simulation& simulation,
                              std::uint32_t original_vertex_bound, std::uint64_t sequence,
                              const TickReport& report) {
@@ -319,6 +343,7 @@ kerf::v1::Frame MakeSnapshot(kerf::v1::Level level, const sim::Simulation& simul
       AppendFloat32(m.current_position(VertexId{v}), frame.mutable_positions());
     }
   }
+  frame.set_model_sha256(ModelSha256(simulation));
   return frame;
 }
 

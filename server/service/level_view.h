@@ -37,9 +37,10 @@ class LevelView {
   // An empty view: the first Advance lists everything as added. `simulation` must outlive it.
   LevelView(kerf::v1::Level level, const sim::Simulation& simulation);
 
-  // The next frame (sequence one more than the last): what changed since the previous frame,
-  // and the view's positions or forces now. O(changes + vertices in the view).
-  kerf::v1::Frame Advance(const TickReport& report);
+  // The next frame, numbered `sequence` (more than the last; numbers may be skipped while
+  // nobody watches): what changed since the previous frame, and the view's positions or forces
+  // now. O(changes + vertices in the view).
+  kerf::v1::Frame Advance(const TickReport& report, std::uint64_t sequence);
 
   // The whole view as of the last frame, with its sequence number (for a subscriber that joins
   // or falls behind). O(view).
@@ -89,6 +90,9 @@ class LevelView {
 kerf::v1::Frame MakeSnapshot(kerf::v1::Level level, const sim::Simulation& simulation,
                              std::uint32_t original_vertex_bound, std::uint64_t sequence,
                              const TickReport& report);
+
+// SHA-256 of the model's whole state in float64 (see Frame.model_sha256). O(mesh).
+std::string ModelSha256(const sim::Simulation& simulation);
 
 // Appends x, y, z as little-endian float32.
 void AppendFloat32(const Eigen::Vector3d& v, std::string* out);

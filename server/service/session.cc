@@ -1,7 +1,9 @@
 #include "service/session.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
@@ -13,6 +15,16 @@ namespace {
 // At most this many steps of the scene's time step per tick; past it the model runs slower
 // than real time (counted as an overrun) rather than stalling the session.
 constexpr int kMaxStepsPerTick = 200;
+
+constexpr std::size_t kMaxWaitingSnapshots = 64;
+
+kerf::v1::BladePose ToProto(const cut::BladePose& pose) {
+  kerf::v1::BladePose message;
+  message.set_time(pose.time);
+  for (int k = 0; k < 3; ++k) message.add_tip(pose.tip[k]);
+  for (int k = 0; k < 3; ++k) message.add_heel(pose.heel[k]);
+  return message;
+}
 
 cut::BladePose Interpolate(const cut::BladePose& a, const cut::BladePose& b, double time) {
   const double s = (time - a.time) / (b.time - a.time);
@@ -32,7 +44,7 @@ SerializedFrame Serialize(const kerf::v1::Frame& frame) {
 
 }  // namespace
 
-absl::StatusOr<std::unique_ptr<Session>> Session::Create(std::string id, sim::Scene scene,
+absl::StatusOr<std::unique_ptr<Session>> Session::Create(SessionSetup setup,
                                                          const SessionOptions& options) {
   if (!(options.physics_rate_hz > 0 && options.physics_rate_hz <= 100000)) {
     return absl::InvalidArgumentError(
@@ -43,16 +55,21 @@ absl::StatusOr<std::unique_ptr<Session>> Session::Create(std::string id, sim::Sc
         absl::StrCat("frame_rate_hz must be positive and at most the physics rate (",
                      options.physics_rate_hz, " Hz), got ", options.frame_rate_hz));
   }
-  std::unique_ptr<Session> session(new Session(std::move(id), options));
-  session->scene_name_ = scene.name;
-  for (const int level : scene.needs.levels()) {
+  if (!(options.speed > 0 && options.speed <= 1000)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("speed must be in (0, 1000], got ", options.speed));
+  }
+  std::unique_ptr<Session> session(
+      new Session(std::move(setup.id), std::move(setup.tokens), options));
+  session->scene_name_ = setup.scene.name;
+  for (const int level : setup.scene.needs.levels()) {
     session->levels_.push_back(static_cast<kerf::v1::Level>(level));
   }
   if (session->levels_.empty()) {
     session->levels_ = {kerf::v1::SURFACE, kerf::v1::VOLUME, kerf::v1::FORCES};
   }
   absl::StatusOr<std::unique_ptr<sim::Simulation>> simulation =
-      sim::Simulation::Create(std::move(scene));
+      sim::Simulation::Create(std::move(setup.scene));
   if (!simulation.ok()) return simulation.status();
   session->tick_seconds_ = 1.0 / options.physics_rate_hz;
   const double frames_per_tick = options.frame_rate_hz / options.physics_rate_hz;
@@ -66,6 +83,10 @@ absl::StatusOr<std::unique_ptr<Session>> Session::Create(std::string id, sim::Sc
                frames_per_tick,
                {}}));
     }
+    session->journal_ = std::move(setup.journal);
+    session->recorded_.assign(std::make_move_iterator(setup.recorded.begin()),
+                              std::make_move_iterator(setup.recorded.end()));
+    while (session->ticks_ < setup.catch_up_to_tick) session->Tick();
   }
   session->thread_ = std::thread([s = session.get()] { s->Run(); });
   return session;
@@ -81,12 +102,19 @@ void Session::StopThread() {
   if (thread_.joinable()) thread_.join();
 }
 
-void Session::Close(const absl::Status& why) {
+void Session::Close(const absl::Status& why, bool for_good) {
   StopThread();
   std::vector<std::shared_ptr<Subscription>> ending;
-  std::vector<SnapshotRequest*> snapshots;
+  std::vector<SnapshotRequest> snapshots;
   {
     absl::MutexLock lock(&mutex_);
+    if (for_good && journal_ != nullptr) {
+      kerf::v1::JournalRecord end;
+      end.mutable_end()->set_tick(std::max<std::uint64_t>(ticks_, 1));
+      unwritten_.push_back(std::move(end));
+      WriteJournal();
+    }
+    journal_.reset();
     for (auto& view : observer_views_) {
       ending.insert(ending.end(), view->subscribers.begin(), view->subscribers.end());
       view->subscribers.clear();
@@ -98,7 +126,9 @@ void Session::Close(const absl::Status& why) {
     }
     snapshots.swap(snapshots_);
   }
-  for (SnapshotRequest* request : snapshots) request->done.Notify();
+  for (SnapshotRequest& request : snapshots) {
+    request.done(absl::CancelledError(absl::StrCat("session ", id_, " closed")));
+  }
   for (const auto& subscription : ending) {
     subscription->queue->Close();
     if (subscription->on_end) subscription->on_end(why);
@@ -156,6 +186,10 @@ absl::StatusOr<std::shared_ptr<Subscription>> Session::BeginCut(
   if (cutter_view_ != nullptr) {
     return absl::FailedPreconditionError(
         absl::StrCat("session ", id_, " already has a cutter; one at a time"));
+  }
+  if (!recorded_.empty()) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("session ", id_, " is replaying a recorded cut; watch it with Observe"));
   }
   const double frames_per_tick =
       frame_rate_hz == 0 ? 1.0 : frame_rate_hz / options_.physics_rate_hz;
@@ -225,34 +259,30 @@ void Session::Unsubscribe(const std::shared_ptr<Subscription>& subscription) {
   list.erase(std::remove(list.begin(), list.end(), subscription), list.end());
 }
 
-absl::StatusOr<kerf::v1::Frame> Session::Snapshot(kerf::v1::Level level, absl::Duration timeout) {
+void Session::Snapshot(kerf::v1::Level level, std::uint64_t sequence,
+                       std::function<void(absl::StatusOr<kerf::v1::Frame>)> done) {
   if (level == kerf::v1::LEVEL_UNSPECIFIED || !kerf::v1::Level_IsValid(level)) {
-    return absl::InvalidArgumentError("level must be SURFACE, VOLUME or FORCES");
+    return done(absl::InvalidArgumentError("level must be SURFACE, VOLUME or FORCES"));
   }
   if (!Offers(level)) {
-    return absl::FailedPreconditionError(
-        absl::StrCat("scene ", scene_name_, " does not offer ", kerf::v1::Level_Name(level)));
+    return done(absl::FailedPreconditionError(
+        absl::StrCat("scene ", scene_name_, " does not offer ", kerf::v1::Level_Name(level))));
   }
-  SnapshotRequest request;
-  request.level = level;
-  {
-    absl::MutexLock lock(&mutex_);
-    if (stopping_) return absl::CancelledError(absl::StrCat("session ", id_, " closed"));
-    snapshots_.push_back(&request);
+  absl::MutexLock lock(&mutex_);
+  if (stopping_) return done(absl::CancelledError(absl::StrCat("session ", id_, " closed")));
+  const View& view = *observer_views_[level];
+  const std::uint64_t made = view.FramesBy(ticks_);
+  const std::uint64_t limit = made + static_cast<std::uint64_t>(60 * options_.frame_rate_hz);
+  if (sequence != 0 && (sequence <= made || sequence > limit)) {
+    return done(absl::OutOfRangeError(absl::StrCat(
+        "frame ", sequence, " of ", kerf::v1::Level_Name(level), ": the session has made ", made,
+        " frames; ask for one of the next minute (up to ", limit, ")")));
   }
-  if (!request.done.WaitForNotificationWithTimeout(timeout)) {
-    absl::MutexLock lock(&mutex_);
-    const auto it = std::find(snapshots_.begin(), snapshots_.end(), &request);
-    if (it != snapshots_.end()) {
-      snapshots_.erase(it);
-      return absl::DeadlineExceededError("the session did not reach a frame in time");
-    }
+  if (snapshots_.size() >= kMaxWaitingSnapshots) {
+    return done(absl::ResourceExhaustedError(absl::StrCat(
+        "session ", id_, " has ", kMaxWaitingSnapshots, " snapshot requests waiting")));
   }
-  request.done.WaitForNotification();  // taken by the tick or by Close
-  if (!request.frame.has_statistics()) {
-    return absl::CancelledError(absl::StrCat("session ", id_, " closed"));
-  }
-  return request.frame;
+  snapshots_.push_back({level, sequence, std::move(done)});
 }
 
 kerf::v1::SessionInfo Session::Info() const {
@@ -274,7 +304,7 @@ kerf::v1::SessionInfo Session::Info() const {
 }
 
 void Session::Run() {
-  const absl::Duration period = absl::Seconds(tick_seconds_);
+  const absl::Duration period = absl::Seconds(tick_seconds_ / options_.speed);
   absl::Time next = absl::Now();
   absl::MutexLock lock(&mutex_);
   while (!stopping_) {
@@ -291,35 +321,83 @@ void Session::Run() {
   }
 }
 
-void Session::ApplyDuePoses(double until) {
-  const auto apply = [&](const cut::BladePose& pose) {
-    if (simulation_->ApplyBladePose(pose).ok()) {
-      before_last_applied_ = last_applied_;
-      last_applied_ = pose;
-      ++poses_applied_;
+void Session::ApplyPose(const cut::BladePose& pose, double blade_time) {
+  blade_time_ = blade_time;
+  if (!simulation_->ApplyBladePose(pose).ok()) return;  // refused: nothing changed
+  before_last_applied_ = last_applied_;
+  last_applied_ = pose;
+  ++poses_applied_;
+}
+
+void Session::Withdraw() {
+  (void)simulation_->WithdrawBlade();
+  withdrawn_this_tick_ = true;
+  last_applied_.reset();
+  before_last_applied_.reset();
+}
+
+void Session::ApplyRecordedEvents(std::uint64_t tick) {
+  while (!recorded_.empty()) {
+    const kerf::v1::JournalRecord& record = recorded_.front();
+    if (record.has_pose()) {
+      if (record.pose().tick() > tick) return;
+      const absl::StatusOr<cut::BladePose> pose = cut::FromProto(record.pose().pose());
+      assert(pose.ok());  // checked by RecordedSessionOf
+      ApplyPose(*pose, record.pose().blade_time());
+    } else {
+      if (record.withdrawal().tick() > tick) return;
+      Withdraw();
     }
+    recorded_.pop_front();
+  }
+}
+
+void Session::ApplyDuePoses(std::uint64_t tick, double until) {
+  const auto apply = [&](const cut::BladePose& pose, double blade_time) {
+    const std::uint64_t applied = poses_applied_;
+    ApplyPose(pose, blade_time);
+    if (journal_ == nullptr || poses_applied_ == applied) return;
+    kerf::v1::JournalRecord record;
+    record.mutable_pose()->set_tick(tick);
+    *record.mutable_pose()->mutable_pose() = ToProto(pose);
+    record.mutable_pose()->set_blade_time(blade_time);
+    unwritten_.push_back(std::move(record));
   };
   while (!poses_.empty() && poses_.front().time <= until) {
-    apply(poses_.front());
-    blade_time_ = poses_.front().time - pose_time_offset_;
+    apply(poses_.front(), poses_.front().time - pose_time_offset_);
     poses_.pop_front();
   }
   if (!poses_.empty() && last_applied_ && last_applied_->time < until) {
-    apply(Interpolate(*last_applied_, poses_.front(), until));  // poses slower than ticks
+    apply(Interpolate(*last_applied_, poses_.front(), until), blade_time_);  // slow poses
   }
   if (poses_.empty() && withdraw_when_done_) {
-    (void)simulation_->WithdrawBlade();
+    Withdraw();
     withdraw_when_done_ = false;
-    withdrawn_this_tick_ = true;
-    last_applied_.reset();
-    before_last_applied_.reset();
+    if (journal_ != nullptr) {
+      kerf::v1::JournalRecord record;
+      record.mutable_withdrawal()->set_tick(tick);
+      unwritten_.push_back(std::move(record));
+    }
   }
+}
+
+void Session::WriteJournal() {
+  if (unwritten_.empty() || journal_ == nullptr) return;
+  if (absl::Status s = journal_->Append(unwritten_); !s.ok()) {
+    // The session goes on (the trainee's cut is not interrupted), without durability.
+    std::fprintf(stderr, "kerf-server: session %s: %s; the session goes on without a journal\n",
+                 id_.c_str(), std::string(s.message()).c_str());
+    journal_.reset();
+  }
+  unwritten_.clear();
 }
 
 void Session::Tick() {
   // Tick n ends at n periods of simulated time; steps of the scene's time step follow it.
-  const double target = static_cast<double>(ticks_ + 1) * tick_seconds_;
-  ApplyDuePoses(target);
+  const std::uint64_t tick = ticks_ + 1;
+  const double target = static_cast<double>(tick) * tick_seconds_;
+  ApplyRecordedEvents(tick);
+  ApplyDuePoses(tick, target);
   if (simulation_->scene().method == kerf::v1::Integration::STATIC) {
     simulation_time_ = target;
   } else {
@@ -336,6 +414,7 @@ void Session::Tick() {
     }
   }
   ++ticks_;
+  WriteJournal();
 
   TickReport report;
   report.simulation_time = simulation_time_;
@@ -355,26 +434,38 @@ void Session::Tick() {
   s.set_cut_tets(simulation_->cutter() ? simulation_->cutter()->statistics().cut_tets : 0);
   s.set_poses_applied(poses_applied_);
 
-  // The views that make a frame this tick; the nodal forces are computed once for them all.
-  std::vector<std::pair<View*, bool>> due;  // and whether a snapshot waits for it
+  // The views that make a frame this tick, with its sequence number; the nodal forces are
+  // computed once for them all. Observer frames are numbered by tick, so that a replayed
+  // session numbers them alike; a view nobody watches makes only the snapshots asked of it.
+  struct Due {
+    View* view;
+    std::uint64_t sequence;
+    bool snapshot;
+  };
+  std::vector<Due> due;
   for (auto& view : observer_views_) {
-    const bool snapshot_pending =
-        std::any_of(snapshots_.begin(), snapshots_.end(),
-                    [&](const SnapshotRequest* r) { return r->level == view->frames.level(); });
     if (!view->DueAt(ticks_)) continue;
-    if (view->subscribers.empty() && !snapshot_pending) continue;
-    due.emplace_back(view.get(), snapshot_pending);
+    const std::uint64_t sequence = view->FramesBy(ticks_);
+    const bool snapshot =
+        std::any_of(snapshots_.begin(), snapshots_.end(), [&](const SnapshotRequest& r) {
+          return r.level == view->frames.level() && (r.sequence == 0 || r.sequence == sequence);
+        });
+    if (view->subscribers.empty() && !snapshot) continue;
+    due.push_back({view.get(), sequence, snapshot});
   }
   if (cutter_view_ != nullptr && (cutter_view_->DueAt(ticks_) || withdrawn_this_tick_)) {
-    due.emplace_back(cutter_view_.get(), false);
+    due.push_back({cutter_view_.get(), cutter_view_->frames.sequence() + 1, false});
   }
   std::vector<Eigen::Vector3d> nodal_forces;
   if (std::any_of(due.begin(), due.end(),
-                  [](const auto& d) { return d.first->frames.level() == kerf::v1::FORCES; })) {
+                  [](const Due& d) { return d.view->frames.level() == kerf::v1::FORCES; })) {
     nodal_forces = ComputeElasticForces(*simulation_);
     report.nodal_forces = nodal_forces;
   }
-  for (const auto& [view, snapshot_pending] : due) Publish(*view, report, snapshot_pending);
+  for (const Due& d : due) {
+    if (!d.view->subscribers.empty()) Publish(*d.view, d.sequence, report);
+    if (d.snapshot) TakeSnapshots(*d.view, d.sequence, report);
+  }
   if (withdrawn_this_tick_) {
     withdrawn_this_tick_ = false;
     if (on_withdrawn_) {  // the cut is over: the blade is free for the next cutter at once
@@ -385,10 +476,11 @@ void Session::Tick() {
       std::exchange(on_withdrawn_, nullptr)();
     }
   }
+  if (options_.after_tick) options_.after_tick(ticks_, simulation_time_, *simulation_);
 }
 
-void Session::Publish(View& view, const TickReport& report, bool snapshot_pending) {
-  const kerf::v1::Frame frame = view.frames.Advance(report);
+void Session::Publish(View& view, std::uint64_t sequence, const TickReport& report) {
+  const kerf::v1::Frame frame = view.frames.Advance(report, sequence);
   const SerializedFrame delta = Serialize(frame);
   std::optional<SerializedFrame> keyframe;  // made once, for those who need one
   for (const auto& subscriber : view.subscribers) {
@@ -399,18 +491,22 @@ void Session::Publish(View& view, const TickReport& report, bool snapshot_pendin
       subscriber->queue->Offer(delta);
     }
   }
-  if (!snapshot_pending) return;
+}
+
+void Session::TakeSnapshots(const View& view, std::uint64_t sequence, const TickReport& report) {
+  std::vector<SnapshotRequest> answered;
   for (auto it = snapshots_.begin(); it != snapshots_.end();) {
-    if ((*it)->level != view.frames.level()) {
+    if (it->level == view.frames.level() && (it->sequence == 0 || it->sequence == sequence)) {
+      answered.push_back(std::move(*it));
+      it = snapshots_.erase(it);
+    } else {
       ++it;
-      continue;
     }
-    (*it)->frame = MakeSnapshot(view.frames.level(), *simulation_, original_vertex_bound_,
-                                frame.sequence(), report);
-    (*it)->frame.set_topology_version(frame.topology_version());
-    (*it)->done.Notify();
-    it = snapshots_.erase(it);
   }
+  if (answered.empty()) return;
+  const kerf::v1::Frame snapshot =
+      MakeSnapshot(view.frames.level(), *simulation_, original_vertex_bound_, sequence, report);
+  for (SnapshotRequest& request : answered) request.done(snapshot);
 }
 
 }  // namespace kerf::service

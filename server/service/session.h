@@ -8,11 +8,17 @@
 // the cutter. Each frame is
 // made and serialized once per view and offered to every subscriber's FrameQueue, which never
 // blocks the tick.
+//
+// Determinism: the model's state after tick n depends only on the scene and on the events
+// (poses applied, blade withdrawn) of ticks 1..n. A session with a journal appends each tick's
+// events to it at the end of the tick; a session given recorded events applies them at their
+// ticks, which rebuilds the recorded model bit for bit (a restore, or a replay to watch).
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,12 +27,13 @@
 
 #include "absl/status/statusor.h"
 #include "absl/synchronization/mutex.h"
-#include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
 #include "cut/blade.h"
 #include "kerf/v1/frame.pb.h"
+#include "kerf/v1/journal.pb.h"
 #include "kerf/v1/simulator.pb.h"
 #include "service/frame_queue.h"
+#include "service/journal_file.h"
 #include "service/level_view.h"
 #include "service/session_tokens.h"
 #include "sim/scene.h"
@@ -42,6 +49,24 @@ struct SessionOptions {
   double max_pose_lead_seconds = 2;    // how far ahead of the session a pose may be queued
   std::size_t max_queued_poses = 4096;
   cut::BladeLimits blade_limits;
+  double speed = 1;  // simulated seconds per wall-clock second (a replay may go faster or slower)
+  // Called on the physics thread after every tick, with the model (for exports).
+  std::function<void(std::uint64_t tick, double simulation_time, const sim::Simulation&)>
+      after_tick;
+};
+
+// What a session is made from.
+struct SessionSetup {
+  std::string id;
+  sim::Scene scene;
+  SessionTokens tokens;
+  // Where the session appends its events (its start record already written); none: no journal.
+  std::unique_ptr<JournalWriter> journal;
+  // Recorded events (JournalPose and JournalWithdrawal records, ticks not decreasing), applied
+  // at their ticks; the session refuses cutters until the last one is applied.
+  std::vector<kerf::v1::JournalRecord> recorded;
+  // Ticks 1..this run at once in Create, before real time starts (a restore catching up).
+  std::uint64_t catch_up_to_tick = 0;
 };
 
 // A subscriber's handle: its queue, and what it asked for. Made by Session::Subscribe.
@@ -55,13 +80,15 @@ struct Subscription {
 
 class Session {
  public:
-  // INVALID_ARGUMENT for a scene the simulation cannot take or bad rates. Starts the thread.
-  static absl::StatusOr<std::unique_ptr<Session>> Create(std::string id, sim::Scene scene,
+  // INVALID_ARGUMENT for a scene the simulation cannot take or bad rates. Catches up, then
+  // starts the thread.
+  static absl::StatusOr<std::unique_ptr<Session>> Create(SessionSetup setup,
                                                          const SessionOptions& options);
   ~Session();  // Close(CANCELLED "session closed")
 
-  // Stops the thread and ends every subscription with `why`. Idempotent.
-  void Close(const absl::Status& why);
+  // Stops the thread and ends every subscription with `why`. With `for_good`, the journal
+  // records the end (the session is not restored). Idempotent.
+  void Close(const absl::Status& why, bool for_good = false);
 
   const std::string& id() const { return id_; }
   const SessionTokens& tokens() const { return tokens_; }
@@ -72,7 +99,8 @@ class Session {
   absl::StatusOr<std::shared_ptr<Subscription>> Observe(
       kerf::v1::Level level, std::function<void(const SerializedFrame&)> start_write,
       std::function<void(const absl::Status&)> on_end);
-  // Takes the blade: FAILED_PRECONDITION while another cutter holds it. Frames at `level`
+  // Takes the blade: FAILED_PRECONDITION while another cutter holds it or recorded events are
+  // still being replayed. Frames at `level`
   // every `frame_rate_hz` (0: every tick).
   absl::StatusOr<std::shared_ptr<Subscription>> BeginCut(
       kerf::v1::Level level, double frame_rate_hz,
@@ -88,9 +116,13 @@ class Session {
   void EndCut(std::function<void()> on_withdrawn = nullptr);
   void Unsubscribe(const std::shared_ptr<Subscription>& subscription);
 
-  // A keyframe made afresh from the model at the next observer frame of `level` (same
-  // sequence number as that frame). DEADLINE_EXCEEDED if the session does not tick in time.
-  absl::StatusOr<kerf::v1::Frame> Snapshot(kerf::v1::Level level, absl::Duration timeout);
+  // Calls `done` with a keyframe made afresh from the model at the observer frame `sequence`
+  // of `level` (0: the next one), with that frame's sequence number: on the physics thread when
+  // the frame is due, or at once with INVALID_ARGUMENT / FAILED_PRECONDITION for a level not
+  // offered, OUT_OF_RANGE for a frame already made or more than a minute ahead,
+  // RESOURCE_EXHAUSTED with too many waiting, CANCELLED when the session closes first.
+  void Snapshot(kerf::v1::Level level, std::uint64_t sequence,
+                std::function<void(absl::StatusOr<kerf::v1::Frame>)> done);
 
   kerf::v1::SessionInfo Info() const;
 
@@ -98,25 +130,33 @@ class Session {
   struct View {
     LevelView frames;
     double frames_per_tick;  // at most 1
-    // Whether tick `tick` (from 1) makes a frame: frames spread evenly over the ticks.
-    bool DueAt(std::uint64_t tick) const {
-      return std::floor(static_cast<double>(tick) * frames_per_tick) !=
-             std::floor(static_cast<double>(tick - 1) * frames_per_tick);
+    // The frames due by tick `tick` (from 1): spread evenly over the ticks.
+    std::uint64_t FramesBy(std::uint64_t tick) const {
+      return static_cast<std::uint64_t>(std::floor(static_cast<double>(tick) * frames_per_tick));
     }
+    bool DueAt(std::uint64_t tick) const { return FramesBy(tick) != FramesBy(tick - 1); }
     std::vector<std::shared_ptr<Subscription>> subscribers;
   };
   struct SnapshotRequest {
     kerf::v1::Level level;
-    absl::Notification done;
-    kerf::v1::Frame frame;
+    std::uint64_t sequence;  // 0: the next frame
+    std::function<void(absl::StatusOr<kerf::v1::Frame>)> done;
   };
 
-  Session(std::string id, const SessionOptions& options)
-      : id_(std::move(id)), options_(options), tokens_(SessionTokens::Generate()) {}
+  Session(std::string id, SessionTokens tokens, const SessionOptions& options)
+      : id_(std::move(id)), options_(options), tokens_(std::move(tokens)) {}
   void Run();
   void Tick() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
-  void ApplyDuePoses(double until) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
-  void Publish(View& view, const TickReport& report, bool snapshot_pending)
+  void ApplyRecordedEvents(std::uint64_t tick) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void ApplyDuePoses(std::uint64_t tick, double until) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void ApplyPose(const cut::BladePose& pose, double blade_time)
+      ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void Withdraw() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void WriteJournal() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void Publish(View& view, std::uint64_t sequence, const TickReport& report)
+      ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  // Answers the snapshot requests of `view`'s level due at this tick's frame `sequence`.
+  void TakeSnapshots(const View& view, std::uint64_t sequence, const TickReport& report)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   bool Offers(kerf::v1::Level level) const;
   void StopThread();
@@ -148,7 +188,11 @@ class Session {
   bool withdraw_when_done_ ABSL_GUARDED_BY(mutex_) = false;
   std::function<void()> on_withdrawn_ ABSL_GUARDED_BY(mutex_);
   bool withdrawn_this_tick_ ABSL_GUARDED_BY(mutex_) = false;
-  std::vector<SnapshotRequest*> snapshots_ ABSL_GUARDED_BY(mutex_);
+  std::vector<SnapshotRequest> snapshots_ ABSL_GUARDED_BY(mutex_);
+  // The journal, and the records of this tick not yet written to it.
+  std::unique_ptr<JournalWriter> journal_ ABSL_GUARDED_BY(mutex_);
+  std::vector<kerf::v1::JournalRecord> unwritten_ ABSL_GUARDED_BY(mutex_);
+  std::deque<kerf::v1::JournalRecord> recorded_ ABSL_GUARDED_BY(mutex_);  // still to apply
   bool stopping_ ABSL_GUARDED_BY(mutex_) = false;
   std::thread thread_;
 };

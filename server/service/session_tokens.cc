@@ -7,9 +7,13 @@
 #include <cstdint>
 
 #include "absl/strings/escaping.h"
+#include "absl/strings/str_cat.h"
+#include "service/sha256.h"
 
 namespace kerf::service {
 namespace {
+
+constexpr std::size_t kDigestBytes = 32;
 
 std::string RandomToken() {
   std::array<char, 32> bytes;
@@ -23,10 +27,20 @@ std::string RandomToken() {
 
 }  // namespace
 
-SessionTokens SessionTokens::Generate() {
-  SessionTokens tokens(RandomToken(), RandomToken());
-  assert(tokens.cutter_ != tokens.observer_);
-  return tokens;
+std::pair<SessionTokens, IssuedTokens> SessionTokens::Generate() {
+  IssuedTokens issued{RandomToken(), RandomToken()};
+  assert(issued.cutter != issued.observer);
+  return {SessionTokens(Sha256(issued.cutter), Sha256(issued.observer)), std::move(issued)};
+}
+
+absl::StatusOr<SessionTokens> SessionTokens::FromDigests(std::string cutter_sha256,
+                                                         std::string observer_sha256) {
+  if (cutter_sha256.size() != kDigestBytes || observer_sha256.size() != kDigestBytes) {
+    return absl::InvalidArgumentError(absl::StrCat("token digests must be ", kDigestBytes,
+                                                   " bytes, got ", cutter_sha256.size(), " and ",
+                                                   observer_sha256.size()));
+  }
+  return SessionTokens(std::move(cutter_sha256), std::move(observer_sha256));
 }
 
 bool ConstantTimeEquals(absl::string_view a, absl::string_view b) {
@@ -45,8 +59,9 @@ absl::Status SessionTokens::Authorize(Role role, absl::string_view token) const 
         "a session token is needed: the cutter or observer token that CreateSession returned");
   }
   // Both comparisons always run, so that the time does not tell which token it was near.
-  const bool is_cutter = ConstantTimeEquals(token, cutter_);
-  const bool is_observer = ConstantTimeEquals(token, observer_);
+  const std::string digest = Sha256(token);
+  const bool is_cutter = ConstantTimeEquals(digest, cutter_sha256_);
+  const bool is_observer = ConstantTimeEquals(digest, observer_sha256_);
   if (is_cutter) return absl::OkStatus();
   if (is_observer && role == Role::kObserver) return absl::OkStatus();
   if (is_observer) return absl::PermissionDeniedError("the observer token cannot cut or close");

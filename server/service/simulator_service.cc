@@ -12,9 +12,6 @@
 namespace kerf::service {
 namespace {
 
-// How long GetSnapshot waits for the session's next frame.
-constexpr absl::Duration kSnapshotTimeout = absl::Seconds(5);
-
 template <typename Message>
 bool ParseByteBuffer(const grpc::ByteBuffer& buffer, Message* message) {
   std::vector<grpc::Slice> slices;
@@ -256,13 +253,13 @@ grpc::ServerUnaryReactor* SimulatorService::ListScenes(grpc::CallbackServerConte
 grpc::ServerUnaryReactor* SimulatorService::CreateSession(
     grpc::CallbackServerContext* context, const kerf::v1::CreateSessionRequest* request,
     kerf::v1::CreateSessionResponse* response) {
-  absl::StatusOr<std::shared_ptr<Session>> session = registry_->Create(*request);
-  if (session.ok()) {
-    *response->mutable_session() = (*session)->Info();
-    response->set_cutter_token((*session)->tokens().cutter());
-    response->set_observer_token((*session)->tokens().observer());
+  absl::StatusOr<CreatedSession> created = registry_->Create(*request);
+  if (created.ok()) {
+    *response->mutable_session() = created->session->Info();
+    response->set_cutter_token(created->tokens.cutter);
+    response->set_observer_token(created->tokens.observer);
   }
-  return FinishUnary(context, session.status());
+  return FinishUnary(context, created.status());
 }
 
 grpc::ServerUnaryReactor* SimulatorService::ListSessions(grpc::CallbackServerContext* context,
@@ -287,12 +284,14 @@ grpc::ServerUnaryReactor* SimulatorService::GetSnapshot(grpc::CallbackServerCont
   absl::StatusOr<std::shared_ptr<Session>> session =
       FindAuthorized(*registry_, request->session_id(), Role::kObserver, request->token());
   if (!session.ok()) return FinishUnary(context, session.status());
-  // Waits for the session's next frame (milliseconds) on this thread, within the deadline.
-  const absl::Duration timeout =
-      std::min(kSnapshotTimeout, absl::FromChrono(context->deadline()) - absl::Now());
-  absl::StatusOr<kerf::v1::Frame> frame = (*session)->Snapshot(request->level(), timeout);
-  if (frame.ok()) *response = *std::move(frame);
-  return FinishUnary(context, frame.status());
+  // Answered by the session when the frame is due (on its thread), not on this one.
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  (*session)->Snapshot(request->level(), request->sequence(),
+                       [reactor, response](absl::StatusOr<kerf::v1::Frame> frame) {
+                         if (frame.ok()) *response = *std::move(frame);
+                         reactor->Finish(ToGrpcStatus(frame.status()));
+                       });
+  return reactor;
 }
 
 grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* SimulatorService::Cut(

@@ -33,11 +33,14 @@ class JournalFileTest : public ::testing::Test {
   }
 
   void Write(int records) {
-    JournalWriter writer = *JournalWriter::Open(path_);
+    std::unique_ptr<JournalWriter> writer = *JournalWriter::Open(path_);
     kerf::v1::JournalRecord start;
     start.mutable_start()->set_session_id("s");
-    ASSERT_TRUE(writer.Append(start).ok());
-    for (int i = 1; i < records; ++i) ASSERT_TRUE(writer.Append(Pose(i)).ok());
+    ASSERT_TRUE(writer->Append(start).ok());
+    // Single records, then a batch of two in one write.
+    for (int i = 1; i + 2 < records; ++i) ASSERT_TRUE(writer->Append(Pose(i)).ok());
+    const std::vector<kerf::v1::JournalRecord> batch = {Pose(records - 2), Pose(records - 1)};
+    ASSERT_TRUE(writer->Append(batch).ok());
   }
 
   std::uintmax_t Size() const {
@@ -91,8 +94,8 @@ TEST_F(JournalFileTest, ATornTailIsCutAtTheLastGoodRecord) {
   // After cutting there, appending goes on cleanly.
   ASSERT_TRUE(TruncateJournal(path_, torn.good_bytes).ok());
   {
-    JournalWriter writer = *JournalWriter::Open(path_);
-    ASSERT_TRUE(writer.Append(Pose(100)).ok());
+    std::unique_ptr<JournalWriter> writer = *JournalWriter::Open(path_);
+    ASSERT_TRUE(writer->Append(Pose(100)).ok());
   }
   const JournalContents repaired = *ReadJournal(path_);
   ASSERT_EQ(repaired.records.size(), 10u);
