@@ -15,9 +15,12 @@
 #include <set>
 #include <thread>
 
+#include "absl/strings/escaping.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "service/grpc_server.h"
+#include "service/session_tokens.h"
+#include "service/sha256.h"
 #include "sim/scene.h"
 
 namespace kerf::service {
@@ -461,11 +464,64 @@ TEST(SimulatorService, TokensGrantTheirRolesOnly) {
   EXPECT_EQ(listed.find(tokens.observer), std::string::npos);
 }
 
+TEST(SessionTokens, KeepsOnlyTheDigestsOfTheTokensItIssues) {
+  EXPECT_EQ(absl::BytesToHexString(Sha256("abc")),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");  // FIPS 180-2
+  const auto [tokens, issued] = SessionTokens::Generate();
+  EXPECT_EQ(issued.cutter.size(), 64u);
+  EXPECT_NE(issued.cutter, issued.observer);
+  EXPECT_EQ(tokens.cutter_sha256(), Sha256(issued.cutter));
+  EXPECT_EQ(tokens.observer_sha256(), Sha256(issued.observer));
+  // Rebuilt from the digests alone (as a restored session is), it admits the same tokens.
+  const absl::StatusOr<SessionTokens> kept =
+      SessionTokens::FromDigests(tokens.cutter_sha256(), tokens.observer_sha256());
+  ASSERT_TRUE(kept.ok()) << kept.status();
+  EXPECT_TRUE(kept->Authorize(Role::kCutter, issued.cutter).ok());
+  EXPECT_TRUE(kept->Authorize(Role::kObserver, issued.observer).ok());
+  EXPECT_EQ(kept->Authorize(Role::kCutter, issued.observer).code(),
+            absl::StatusCode::kPermissionDenied);
+  // The digest itself is no token.
+  EXPECT_EQ(kept->Authorize(Role::kObserver, tokens.cutter_sha256()).code(),
+            absl::StatusCode::kPermissionDenied);
+  EXPECT_EQ(kept->Authorize(Role::kObserver, "").code(), absl::StatusCode::kUnauthenticated);
+  EXPECT_EQ(SessionTokens::FromDigests("short", tokens.observer_sha256()).status().code(),
+            absl::StatusCode::kInvalidArgument);
+}
+
 TEST(SessionTokens, ComparesWholeTokens) {
   EXPECT_TRUE(ConstantTimeEquals("abc", "abc"));
   EXPECT_FALSE(ConstantTimeEquals("abc", "abd"));
   EXPECT_FALSE(ConstantTimeEquals("abc", "ab"));
   EXPECT_FALSE(ConstantTimeEquals("", "a"));
+}
+
+TEST(SimulatorService, SnapshotsAtAChosenFrameNumber) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  const Frame now = Snapshot(server, info.session_id(), kerf::v1::SURFACE);
+  const auto at = [&](std::uint64_t sequence, Frame* frame) {
+    kerf::v1::GetSnapshotRequest request;
+    request.set_session_id(info.session_id());
+    request.set_level(kerf::v1::SURFACE);
+    request.set_token(TokensOf(info.session_id()).observer);
+    request.set_sequence(sequence);
+    grpc::ClientContext context;
+    return server.stub().GetSnapshot(&context, request, frame);
+  };
+  Frame later;
+  const grpc::Status waited = at(now.sequence() + 5, &later);
+  ASSERT_TRUE(waited.ok()) << waited.error_message();
+  EXPECT_EQ(later.sequence(), now.sequence() + 5);
+  // Frame n is due at the tick where n frames per (physics/frame rate) ticks are done.
+  EXPECT_NEAR(later.simulation_time() - now.simulation_time(), 5.0 / 60, 1.5e-3);
+  EXPECT_EQ(later.model_sha256().size(), 32u);
+  Frame none;
+  const grpc::Status past = at(now.sequence(), &none);
+  EXPECT_EQ(past.error_code(), grpc::StatusCode::OUT_OF_RANGE);
+  EXPECT_NE(past.error_message().find("the session has made"), std::string::npos)
+      << past.error_message();
+  EXPECT_EQ(at(later.sequence() + 3600 + 60, &none).error_code(),
+            grpc::StatusCode::OUT_OF_RANGE);  // more than a minute ahead
 }
 
 TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {

@@ -1,0 +1,122 @@
+#include "service/session_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "absl/strings/str_cat.h"
+#include "service/journal_file.h"
+
+namespace kerf::service {
+namespace {
+
+class SessionRegistryJournalTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = absl::StrCat(::testing::TempDir(), "/kerf-registry-", getpid(), "-",
+                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  RegistryOptions Options() const {
+    RegistryOptions options;
+    options.journal_dir = dir_;
+    return options;
+  }
+  std::string JournalOf(const std::string& id) const {
+    return absl::StrCat(dir_, "/", id, ".journal");
+  }
+
+  std::string dir_;
+};
+
+TEST_F(SessionRegistryJournalTest, ASessionLeftOpenIsRestoredWithItsTokens) {
+  std::string id;
+  IssuedTokens tokens;
+  {
+    SessionRegistry registry(Options());
+    absl::StatusOr<CreatedSession> created = registry.Create({});
+    ASSERT_TRUE(created.ok()) << created.status();
+    id = created->session->id();
+    tokens = created->tokens;
+    registry.CloseAll(absl::UnavailableError("shutting down"));  // not for good
+  }
+  const absl::StatusOr<JournalContents> journal = ReadJournal(JournalOf(id));
+  ASSERT_TRUE(journal.ok()) << journal.status();
+  ASSERT_GE(journal->records.size(), 1u);
+  const std::string bytes = journal->records[0].SerializeAsString();
+  EXPECT_EQ(bytes.find(tokens.cutter), std::string::npos);  // never the tokens themselves
+  EXPECT_EQ(bytes.find(tokens.observer), std::string::npos);
+  EXPECT_EQ(std::filesystem::status(JournalOf(id)).permissions() &
+                (std::filesystem::perms::group_all | std::filesystem::perms::others_all),
+            std::filesystem::perms::none);
+
+  SessionRegistry restarted(Options());
+  const std::vector<RestoreOutcome> outcomes = restarted.Restore();
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_TRUE(outcomes[0].status.ok()) << outcomes[0].status;
+  EXPECT_TRUE(outcomes[0].restored);
+  const absl::StatusOr<std::shared_ptr<Session>> session = restarted.Find(id);
+  ASSERT_TRUE(session.ok()) << session.status();
+  EXPECT_TRUE((*session)->tokens().Authorize(Role::kCutter, tokens.cutter).ok());
+  EXPECT_TRUE((*session)->tokens().Authorize(Role::kObserver, tokens.observer).ok());
+  EXPECT_EQ((*session)->Info().tets(), 576u);
+}
+
+TEST_F(SessionRegistryJournalTest, ASessionClosedByItsClientIsKeptButNotRestored) {
+  std::string id;
+  {
+    SessionRegistry registry(Options());
+    absl::StatusOr<CreatedSession> created = registry.Create({});
+    ASSERT_TRUE(created.ok()) << created.status();
+    id = created->session->id();
+    ASSERT_TRUE(registry.Close(id).ok());
+  }
+  ASSERT_TRUE(std::filesystem::exists(JournalOf(id)));  // kept for replay
+  SessionRegistry restarted(Options());
+  const std::vector<RestoreOutcome> outcomes = restarted.Restore();
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_TRUE(outcomes[0].status.ok()) << outcomes[0].status;
+  EXPECT_FALSE(outcomes[0].restored);
+  EXPECT_EQ(restarted.Find(id).status().code(), absl::StatusCode::kNotFound);
+}
+
+TEST_F(SessionRegistryJournalTest, AJournalThatCannotBeRestoredIsReportedAndLeftAlone) {
+  const std::string garbage = JournalOf("0123456789abcdef0123456789abcdef");
+  std::ofstream(garbage, std::ios::binary) << "not a journal at all";
+  SessionRegistry registry(Options());
+  const std::vector<RestoreOutcome> outcomes = registry.Restore();
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_EQ(outcomes[0].status.code(), absl::StatusCode::kInvalidArgument) << outcomes[0].status;
+  EXPECT_FALSE(outcomes[0].restored);
+  EXPECT_EQ(std::filesystem::file_size(garbage), 20u);  // untouched, for a person to look at
+  EXPECT_TRUE(registry.List().empty());
+}
+
+TEST_F(SessionRegistryJournalTest, RestoringBeyondTheSessionLimitLeavesTheRestForLater) {
+  std::vector<std::string> ids;
+  {
+    SessionRegistry registry(Options());
+    for (int i = 0; i < 2; ++i) ids.push_back((*registry.Create({})).session->id());
+    registry.CloseAll(absl::UnavailableError("shutting down"));
+  }
+  RegistryOptions one = Options();
+  one.max_sessions = 1;
+  SessionRegistry small(one);
+  const std::vector<RestoreOutcome> outcomes = small.Restore();
+  ASSERT_EQ(outcomes.size(), 2u);
+  EXPECT_TRUE(outcomes[0].restored);
+  EXPECT_EQ(outcomes[1].status.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_EQ(small.List().size(), 1u);
+  small.CloseAll(absl::UnavailableError("shutting down"));
+  SessionRegistry big(Options());  // the one left out is still there to restore
+  std::size_t restored = 0;
+  for (const RestoreOutcome& outcome : big.Restore()) restored += outcome.restored ? 1 : 0;
+  EXPECT_EQ(restored, 2u);
+}
+
+}  // namespace
+}  // namespace kerf::service
