@@ -8,6 +8,7 @@
 #include "cli/cut_command.h"
 #include "cli/experiment_command.h"
 #include "cli/mesh_commands.h"
+#include "cli/replay_command.h"
 #include "cli/sim_command.h"
 #include "cli/static_command.h"
 
@@ -22,7 +23,9 @@ constexpr absl::string_view kUsage =
     "       kerf sim list\n"
     "       kerf static DECK.inp [--json]\n"
     "       kerf cut MESH --path PATH.json --out OUT.vtu [--json]\n"
-    "       kerf experiment lattice-cut [--json]\n";
+    "       kerf experiment lattice-cut [--json]\n"
+    "       kerf replay JOURNAL [--speed X] [--listen HOST:PORT] [--export-at T,...|end]\n"
+    "                   [--out-prefix P] [--linger S] [--json]\n";
 
 }  // namespace
 
@@ -44,6 +47,8 @@ int main(int argc, char** argv) {
     result = kerf::cli::RunSimCommand(rest);
   } else if (args[0] == "static") {
     result = kerf::cli::RunStaticCommand(rest);
+  } else if (args[0] == "replay") {
+    result = kerf::cli::RunReplayCommand(rest);
   } else if (args[0] == "demo") {
     result = kerf::cli::RunDemoCommand(rest);
   } else {

@@ -8,7 +8,6 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
-#include "service/recorded_session.h"
 
 namespace kerf::service {
 namespace {
@@ -115,6 +114,22 @@ absl::StatusOr<CreatedSession> SessionRegistry::Create(
   }
   if (!journal_path.empty()) std::remove(journal_path.c_str());  // nothing to keep
   return session.status();
+}
+
+absl::StatusOr<CreatedSession> SessionRegistry::CreateReplay(const RecordedSession& recorded,
+                                                             SessionOptions options) {
+  absl::StatusOr<sim::Scene> scene = sim::BuildScene(recorded.start.scene(), ".");
+  if (!scene.ok()) return scene.status();
+  options.physics_rate_hz = recorded.start.physics_rate_hz();
+  options.frame_rate_hz = recorded.start.frame_rate_hz();
+  auto [tokens, issued] = SessionTokens::Generate();
+  absl::StatusOr<std::unique_ptr<Session>> session = Session::Create(
+      {NewSessionId(), *std::move(scene), std::move(tokens), nullptr, recorded.events, 0},
+      options);
+  if (!session.ok()) return session.status();
+  std::shared_ptr<Session> shared = *std::move(session);
+  if (absl::Status s = Add(shared); !s.ok()) return s;
+  return CreatedSession{std::move(shared), std::move(issued)};
 }
 
 std::vector<RestoreOutcome> SessionRegistry::Restore() {

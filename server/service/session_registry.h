@@ -12,6 +12,7 @@
 #include "absl/status/statusor.h"
 #include "absl/synchronization/mutex.h"
 #include "kerf/v1/simulator.pb.h"
+#include "service/recorded_session.h"
 #include "service/session.h"
 
 namespace kerf::service {
@@ -51,6 +52,12 @@ class SessionRegistry {
   // a warning) and then runs on, appending to the same journal. A journal that cannot be
   // restored is reported and left as it is. Call before serving.
   std::vector<RestoreOutcome> Restore();
+  // A new session (new id and tokens, no journal) replaying `recorded` at its ticks, to be
+  // watched; `options` gives the speed and limits (the rates are the recording's).
+  // INVALID_ARGUMENT for a recording whose scene does not build, RESOURCE_EXHAUSTED at the
+  // session limit.
+  absl::StatusOr<CreatedSession> CreateReplay(const RecordedSession& recorded,
+                                              SessionOptions options);
   // NOT_FOUND naming the id.
   absl::StatusOr<std::shared_ptr<Session>> Find(const std::string& id) const;
   // Closes the session for good (its journal records the end and is kept for replay).

@@ -111,6 +111,28 @@ TEST(KerfCli, SimAndStaticErrors) {
   EXPECT_THAT(run.output, HasSubstr("lattice-tension: The paper's 4x6x4 lattice"));
 }
 
+// Replaying itself is tested against a journal kerf-server wrote (tests/service).
+TEST(KerfCli, ReplayRefusesBadInputClearly) {
+  CliResult run = Kerf("replay /no/such.journal");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("no journal '/no/such.journal'"));
+  const std::string junk = ::testing::TempDir() + "/kerf-cli-junk.journal";
+  std::ofstream(junk) << "not a journal";
+  run = Kerf(absl::StrCat("replay ", junk));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("does not begin with a start record"));
+  run = Kerf(absl::StrCat("replay ", junk, " --speed 0"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("--speed must be in (0, 1000]"));
+  run = Kerf(absl::StrCat("replay ", junk, " --linger soon"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("--linger"));
+  run = Kerf("replay");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("kerf replay JOURNAL"));
+  std::remove(junk.c_str());
+}
+
 TEST(KerfCli, CutWritesTheCutMeshWithItsSourcesAndReports) {
   const std::string dir = ::testing::TempDir();
   ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 6 2 2 --size 0.06 0.02 0.02 --out ", dir, "/bar.msh"))

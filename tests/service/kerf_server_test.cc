@@ -1,6 +1,7 @@
 // The kerf-server binary as an operator runs it: it starts with no scene arguments, serves,
 // and on SIGTERM ends every stream with UNAVAILABLE and exits 0; killed outright (SIGKILL) mid-
-// session, it restores the session from its journal at the next start, bit for bit.
+// session, it restores the session from its journal at the next start, bit for bit; and
+// `kerf replay` replays the journal for observers and exports the same model.
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -14,10 +15,16 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
+#include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_split.h"
+#include "absl/strings/strip.h"
 #include "absl/time/clock.h"
 #include "cut/blade.h"
 #include "embedded_text.h"
+#include "google/protobuf/util/json_util.h"
+#include "kerf/v1/replay_report.pb.h"
 #include "kerf/v1/simulator.grpc.pb.h"
 
 namespace kerf::service {
@@ -154,7 +161,7 @@ std::vector<std::uint32_t> Ids(const google::protobuf::RepeatedField<std::uint32
   return {ids.begin(), ids.end()};
 }
 
-TEST(KerfServer, RestoresASessionKilledMidwayBitForBit) {
+TEST(KerfServer, RestoresASessionKilledMidwayBitForBitAndReplaysIt) {
   const std::string journal_dir =
       absl::StrCat(::testing::TempDir(), "/kerf-restore-", getpid(), "-journal");
   std::filesystem::remove_all(journal_dir);
@@ -229,6 +236,49 @@ TEST(KerfServer, RestoresASessionKilledMidwayBitForBit) {
     const grpc::Status closed = restarted.stub().CloseSession(&context, request, &response);
     EXPECT_TRUE(closed.ok()) << closed.error_message();
   }
+
+  // The closed session's journal replays into a new session that an observer watches while it
+  // runs, and the mesh exported at the snapshot's time is the same model, bit for bit.
+  FILE* replay = popen(absl::StrFormat("%s replay %s --listen 127.0.0.1:0 --export-at %.17g "
+                                       "--out-prefix %s/replay --json",
+                                       KERF_BINARY, journal, before.simulation_time(),
+                                       journal_dir)
+                           .c_str(),
+                       "r");
+  ASSERT_NE(replay, nullptr);
+  char line[1024];
+  ASSERT_NE(fgets(line, sizeof(line), replay), nullptr);
+  // "kerf replay: session ID on HOST:PORT, observer token TOKEN"
+  const std::vector<std::string> words = absl::StrSplit(absl::StripAsciiWhitespace(line), ' ');
+  ASSERT_EQ(words.size(), 9u) << line;
+  auto stub = kerf::v1::Simulator::NewStub(grpc::CreateChannel(
+      std::string(absl::StripSuffix(words[5], ",")), grpc::InsecureChannelCredentials()));
+  kerf::v1::ObserveRequest observe;
+  observe.set_session_id(words[3]);
+  observe.set_level(kerf::v1::SURFACE);
+  observe.set_token(words[8]);
+  grpc::ClientContext observe_context;
+  auto frames = stub->Observe(&observe_context, observe);
+  kerf::v1::Frame frame;
+  int watched = 0;
+  bool saw_the_cut = false;
+  while (frames->Read(&frame)) {
+    ++watched;
+    saw_the_cut |= frame.added_elements_on_cut().find('\x01') != std::string::npos;
+  }
+  EXPECT_GT(watched, 30);
+  EXPECT_TRUE(saw_the_cut);
+  std::string json;
+  while (fgets(line, sizeof(line), replay) != nullptr) json += line;
+  ASSERT_EQ(pclose(replay), 0) << json;
+  kerf::v1::ReplayReport report;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(json, &report).ok()) << json;
+  ASSERT_EQ(report.exports_size(), 1);
+  EXPECT_EQ(report.exports(0).simulation_time(), before.simulation_time());
+  EXPECT_EQ(report.exports(0).model_sha256(), absl::BytesToHexString(before.model_sha256()));
+  EXPECT_TRUE(std::filesystem::exists(report.exports(0).path()));
+  EXPECT_EQ(report.recorded_session_id(), created.session().session_id());
+  EXPECT_GT(report.tets_after(), report.tets_before());
   std::filesystem::remove_all(journal_dir);
 }
 
