@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <filesystem>
 #include <thread>
 #include <vector>
 
@@ -101,16 +102,23 @@ struct ObserverTally {
 
 // One cutter streams a pose every millisecond for 2 s (a blade 4.5 cm long crossing the
 // lattice at 25 mm/s) and takes a frame after every physics tick; `observers` observers take
-// frames at 60 Hz, cycling through SURFACE, VOLUME and FORCES.
+// frames at 60 Hz, cycling through SURFACE, VOLUME and FORCES. With `journal` 1 the session
+// journals every pose to a file (in the temporary directory).
 void BM_PoseToFrame(benchmark::State& state) {
   const int observer_count = static_cast<int>(state.range(0));
-  SessionRegistry registry({});
+  RegistryOptions options;
+  if (state.range(1) != 0) {
+    options.journal_dir = absl::StrCat(std::filesystem::temp_directory_path().string(),
+                                       "/kerf-benchmark-journal-", getpid());
+    std::filesystem::create_directories(options.journal_dir);
+  }
+  SessionRegistry registry(options);
   SimulatorService service(&registry);
   absl::StatusOr<RunningServer> server = StartServer(LoopbackConfig(), &service);
   auto channel = grpc::CreateChannel(absl::StrCat("127.0.0.1:", server->port),
                                      grpc::InsecureChannelCredentials());
   auto stub = kerf::v1::Simulator::NewStub(channel);
-  std::vector<double> latencies;
+  std::vector<double> latencies, tick_seconds;
   std::int64_t cutter_frames = 0;
   double seconds = 0;
   std::vector<std::unique_ptr<ObserverTally>> tallies;
@@ -171,6 +179,7 @@ void BM_PoseToFrame(benchmark::State& state) {
       while (stream->Read(&frame)) {
         const absl::Time now = absl::Now();
         ++cutter_frames;
+        tick_seconds.push_back(frame.statistics().physics_step_seconds());
         const int pose = static_cast<int>(std::lround(frame.blade_time() * 1000));
         if (frame.blade_time() > 0 && pose > seen && pose <= kPoses) {
           seen = pose;
@@ -204,6 +213,8 @@ void BM_PoseToFrame(benchmark::State& state) {
   state.counters["pose_to_frame_p50_us"] = Percentile(latencies, 0.5);
   state.counters["pose_to_frame_p99_us"] = Percentile(latencies, 0.99);
   state.counters["cutter_fps"] = static_cast<double>(cutter_frames) / seconds;
+  state.counters["physics_tick_p50_us"] = 1e6 * Percentile(tick_seconds, 0.5);
+  state.counters["physics_tick_p99_us"] = 1e6 * Percentile(tick_seconds, 0.99);
   double observer_frames = 0;
   for (const auto& tally : tallies) observer_frames += static_cast<double>(tally->frames);
   if (observer_count > 0) {
@@ -221,14 +232,16 @@ void BM_PoseToFrame(benchmark::State& state) {
   }
   registry.CloseAll(absl::UnavailableError("benchmark over"));
   server->server->Shutdown();
+  if (!options.journal_dir.empty()) std::filesystem::remove_all(options.journal_dir);
 }
 
 BENCHMARK(BM_EchoRoundTrip)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_PoseToFrame)
-    ->Arg(1)
-    ->Arg(4)
-    ->Arg(16)
-    ->ArgName("observers")
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({4, 0})
+    ->Args({16, 0})
+    ->ArgNames({"observers", "journal"})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -6,6 +6,7 @@
 #include "fem/tensor_mass_model.h"
 #include "mesh/connected_components.h"
 #include "mesh/mesh_validation.h"
+#include "sim/scene.h"
 #include "sim/simulation.h"
 
 namespace kerf::sim {
@@ -77,6 +78,27 @@ TEST(Simulation, APieceCutFreeFallsAndTheModelFollowsTheCut) {
   EXPECT_LT(free_drop, -0.03) << "the free piece did not fall";
   EXPECT_GT(held_drop, -0.015) << "the held piece fell";
   EXPECT_TRUE(std::isfinite(free_drop) && std::isfinite(held_drop));
+}
+
+// Cutting the lattice while it still moves under its load drops hits (issue 5 is to fix that);
+// the vertices the cutter made and removed again still have slots, and the model and the state
+// must cover every slot of the mesh after every pose, or the forces of the next frame are read
+// past the end.
+TEST(Simulation, TheStateCoversEveryVertexSlotWhenACutDropsItsHits) {
+  std::unique_ptr<Simulation> s = *Simulation::Create(*LoadScene("lattice-tension"));
+  double time = 0;
+  for (int k = 0; k <= 25; ++k) {
+    const Eigen::Vector3d tip(-0.005 + 0.002 * k, 0.0385, -0.005);
+    ASSERT_TRUE(s->ApplyBladePose({time, tip, tip + Eigen::Vector3d(0, 0, 0.05)}).ok());
+    ASSERT_EQ(s->state().displacement.size(), s->mesh().vertex_index_bound()) << "pose " << k;
+    for (int step = 0; step < 10; ++step) s->Step();
+    time += 0.01;
+  }
+  ASSERT_TRUE(s->WithdrawBlade().ok());
+  EXPECT_EQ(s->state().displacement.size(), s->mesh().vertex_index_bound());
+  EXPECT_EQ(s->state().velocity.size(), s->mesh().vertex_index_bound());
+  EXPECT_EQ(s->model().vertex_count(), s->mesh().vertex_index_bound());
+  EXPECT_TRUE(mesh::FindMeshDefects(s->mesh()).empty());
 }
 
 TEST(Simulation, ABadBladePoseChangesNothing) {
