@@ -13,14 +13,13 @@
 #include <string>
 
 #include "absl/strings/ascii.h"
+#include "absl/strings/escaping.h"
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
-#include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_split.h"
 #include "absl/strings/strip.h"
-#include "absl/time/clock.h"
 #include "cut/blade.h"
 #include "embedded_text.h"
 #include "google/protobuf/util/json_util.h"
@@ -173,9 +172,14 @@ TEST(KerfServer, RestoresASessionKilledMidwayBitForBitAndReplaysIt) {
     ASSERT_TRUE(server.started()) << server.said();
     grpc::ClientContext context;
     ASSERT_TRUE(server.stub().CreateSession(&context, {}, &created).ok());
-    // The tissue settles under its load first (the deferred cutter drops cuts through a mesh
-    // still in motion: issue 5's progressive cutting is to fix that).
-    absl::SleepFor(absl::Seconds(1));
+    // The tissue settles under its load for a second of simulated time first (frame 60; the
+    // deferred cutter drops cuts through a mesh still in motion: issue 5's progressive cutting
+    // is to fix that).
+    kerf::v1::Frame settled;
+    const grpc::Status waited =
+        SnapshotAt(server.stub(), created.session().session_id(), created.observer_token(),
+                   kerf::v1::SURFACE, 60, &settled);
+    ASSERT_TRUE(waited.ok()) << waited.error_message();
     CutStraightThrough(server.stub(), created.session().session_id(), created.cutter_token());
     // A frame 1.5 s after now (well past the end of the cut) is taken, then the server is
     // killed at once: its session is lost from memory, with the elastic motion since the cut.
@@ -241,8 +245,7 @@ TEST(KerfServer, RestoresASessionKilledMidwayBitForBitAndReplaysIt) {
   // runs, and the mesh exported at the snapshot's time is the same model, bit for bit.
   FILE* replay = popen(absl::StrFormat("%s replay %s --listen 127.0.0.1:0 --export-at %.17g "
                                        "--out-prefix %s/replay --json",
-                                       KERF_BINARY, journal, before.simulation_time(),
-                                       journal_dir)
+                                       KERF_BINARY, journal, before.simulation_time(), journal_dir)
                            .c_str(),
                        "r");
   ASSERT_NE(replay, nullptr);
