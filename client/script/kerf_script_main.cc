@@ -6,9 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -18,7 +16,9 @@
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/clock.h"
-#include "google/protobuf/util/json_util.h"
+#include "common/blade_path_file.h"
+#include "common/channel.h"
+#include "common/latency_summary.h"
 #include "kerf/v1/simulator.grpc.pb.h"
 
 ABSL_FLAG(std::string, server, "127.0.0.1:50051", "the kerf-server to cut against, host:port");
@@ -34,12 +34,6 @@ namespace {
 int Fail(const std::string& what) {
   std::fprintf(stderr, "kerf-script: %s\n", what.c_str());
   return 1;
-}
-
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(p * static_cast<double>(v.size() - 1))];
 }
 
 // Boundary triangles a SURFACE observer holds, and how many lie on a cut.
@@ -60,30 +54,14 @@ struct Surface {
 int main(int argc, char** argv) {
   absl::SetProgramUsageMessage("kerf-script --path=PATH.json [--server=HOST:PORT] [--scene=NAME]");
   absl::ParseCommandLine(argc, argv);
-  std::ifstream file(absl::GetFlag(FLAGS_path));
-  if (!file) return Fail(absl::StrCat("cannot read --path '", absl::GetFlag(FLAGS_path), "'"));
-  std::stringstream text;
-  text << file.rdbuf();
-  kerf::v1::BladePath path;
-  if (auto s = google::protobuf::util::JsonStringToMessage(text.str(), &path); !s.ok()) {
-    return Fail(absl::StrCat(absl::GetFlag(FLAGS_path), ": ", s.ToString()));
-  }
-  if (path.poses().empty()) return Fail("the path has no poses");
-
-  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
-  if (!absl::GetFlag(FLAGS_tls_ca).empty()) {
-    std::ifstream ca(absl::GetFlag(FLAGS_tls_ca));
-    std::stringstream pem;
-    pem << ca.rdbuf();
-    if (!ca || pem.str().empty()) {
-      return Fail(absl::StrCat("cannot read --tls_ca '", absl::GetFlag(FLAGS_tls_ca), "'"));
-    }
-    grpc::SslCredentialsOptions options;
-    options.pem_root_certs = pem.str();
-    credentials = grpc::SslCredentials(options);
-  }
-  auto stub =
-      kerf::v1::Simulator::NewStub(grpc::CreateChannel(absl::GetFlag(FLAGS_server), credentials));
+  const absl::StatusOr<kerf::v1::BladePath> read =
+      kerf::client::ReadBladePath(absl::GetFlag(FLAGS_path));
+  if (!read.ok()) return Fail(std::string(read.status().message()));
+  const kerf::v1::BladePath& path = *read;
+  absl::StatusOr<std::shared_ptr<grpc::Channel>> channel =
+      kerf::client::OpenChannel(absl::GetFlag(FLAGS_server), absl::GetFlag(FLAGS_tls_ca));
+  if (!channel.ok()) return Fail(std::string(channel.status().message()));
+  auto stub = kerf::v1::Simulator::NewStub(*channel);
   kerf::v1::CreateSessionRequest create;
   create.set_scene_name(absl::GetFlag(FLAGS_scene));
   kerf::v1::CreateSessionResponse created;
@@ -183,14 +161,15 @@ int main(int argc, char** argv) {
   if (!cut_status.ok()) return Fail(absl::StrCat("Cut: ", cut_status.error_message()));
 
   absl::MutexLock lock(&mutex);
+  const kerf::client::Summary latency = kerf::client::Summarize(latencies_ms);
   std::printf("session %s, scene %s: %u tets before the cut, %lu after\n",
               info.session_id().c_str(), info.scene_name().c_str(),
               static_cast<unsigned>(info.tets()), static_cast<unsigned long>(after.tets()));
   std::printf(
       "cutter: %d poses sent in %.2f s, %zu frames back, pose-to-frame latency p50 %.2f ms, "
       "p99 %.2f ms; largest tool force %.3f N\n",
-      path.poses_size(), absl::ToDoubleSeconds(absl::Now() - begin), cutter_frames,
-      Percentile(latencies_ms, 0.5), Percentile(latencies_ms, 0.99), largest_force);
+      path.poses_size(), absl::ToDoubleSeconds(absl::Now() - begin), cutter_frames, latency.p50,
+      latency.p99, largest_force);
   std::printf(
       "observer (SURFACE): %zu frames; %zu boundary triangles before, %zu after, "
       "%zu of them on the cut\n",

@@ -43,6 +43,7 @@ void FrameQueue::StartIfIdle() {
   const SerializedFrame next = std::move(waiting_.front());
   waiting_.pop_front();
   writing_ = true;
+  ++sent_;
   start_write_(next);
 }
 
@@ -68,6 +69,11 @@ void FrameQueue::Close() {
 std::uint64_t FrameQueue::skipped() const {
   absl::MutexLock lock(&mutex_);
   return skipped_;
+}
+
+std::uint64_t FrameQueue::sent() const {
+  absl::MutexLock lock(&mutex_);
+  return sent_;
 }
 
 std::uint64_t FrameQueue::resyncs() const {

@@ -47,6 +47,7 @@ class FrameQueue {
   // Counters, for statistics and tests.
   std::uint64_t skipped() const;  // frames replaced by a later one (latest wins)
   std::uint64_t resyncs() const;  // times it fell behind and was given a keyframe
+  std::uint64_t sent() const;     // frames handed to the writer
 
  private:
   void Push(const SerializedFrame& frame) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
@@ -61,6 +62,7 @@ class FrameQueue {
   bool closed_ ABSL_GUARDED_BY(mutex_) = false;
   std::uint64_t skipped_ ABSL_GUARDED_BY(mutex_) = 0;
   std::uint64_t resyncs_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::uint64_t sent_ ABSL_GUARDED_BY(mutex_) = 0;
 };
 
 }  // namespace kerf::service

@@ -129,10 +129,14 @@ void Session::Close(const absl::Status& why, bool for_good) {
   for (SnapshotRequest& request : snapshots) {
     request.done(absl::CancelledError(absl::StrCat("session ", id_, " closed")));
   }
+  std::uint64_t sent = 0;
   for (const auto& subscription : ending) {
-    subscription->queue->Close();
+    subscription->queue->Close();  // sent() is final from here
+    if (!subscription->cutter) sent += subscription->queue->sent();
     if (subscription->on_end) subscription->on_end(why);
   }
+  absl::MutexLock lock(&mutex_);
+  frames_sent_to_departed_ += sent;
 }
 
 bool Session::Offers(kerf::v1::Level level) const {
@@ -234,6 +238,7 @@ absl::Status Session::SubmitPose(const kerf::v1::BladePose& message) {
   pose_time_offset_ = offset;
   last_submitted_ = due;
   poses_.push_back(due);
+  ++poses_received_;
   return absl::OkStatus();
 }
 
@@ -256,7 +261,9 @@ void Session::Unsubscribe(const std::shared_ptr<Subscription>& subscription) {
     return;
   }
   auto& list = observer_views_[subscription->level]->subscribers;
-  list.erase(std::remove(list.begin(), list.end(), subscription), list.end());
+  const auto gone = std::remove(list.begin(), list.end(), subscription);
+  if (gone != list.end()) frames_sent_to_departed_ += subscription->queue->sent();
+  list.erase(gone, list.end());
 }
 
 void Session::Snapshot(kerf::v1::Level level, std::uint64_t sequence,
@@ -297,8 +304,14 @@ kerf::v1::SessionInfo Session::Info() const {
   info.set_tets(simulation_->mesh().tet_count());
   info.set_vertices(simulation_->mesh().vertex_count());
   std::size_t observers = 0;
-  for (const auto& view : observer_views_) observers += view->subscribers.size();
+  std::uint64_t frames_sent = frames_sent_to_departed_;
+  for (const auto& view : observer_views_) {
+    observers += view->subscribers.size();
+    for (const auto& s : view->subscribers) frames_sent += s->queue->sent();
+  }
   info.set_observers(static_cast<std::uint32_t>(observers));
+  info.set_poses_received(poses_received_);
+  info.set_observer_frames_sent(frames_sent);
   info.set_cutting(cutter_view_ != nullptr);
   return info;
 }

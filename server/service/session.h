@@ -175,6 +175,8 @@ class Session {
   std::uint64_t ticks_ ABSL_GUARDED_BY(mutex_) = 0;
   std::uint64_t overruns_ ABSL_GUARDED_BY(mutex_) = 0;
   std::uint64_t poses_applied_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::uint64_t poses_received_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::uint64_t frames_sent_to_departed_ ABSL_GUARDED_BY(mutex_) = 0;  // observers gone
   double last_tick_seconds_ ABSL_GUARDED_BY(mutex_) = 0;
   std::vector<std::unique_ptr<View>> observer_views_ ABSL_GUARDED_BY(mutex_);  // by level
   std::unique_ptr<View> cutter_view_ ABSL_GUARDED_BY(mutex_);

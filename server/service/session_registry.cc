@@ -208,7 +208,7 @@ absl::StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string
   return it->second;
 }
 
-absl::Status SessionRegistry::Close(const std::string& id) {
+absl::StatusOr<kerf::v1::SessionInfo> SessionRegistry::Close(const std::string& id) {
   std::shared_ptr<Session> session;
   {
     absl::MutexLock lock(&mutex_);
@@ -219,7 +219,7 @@ absl::Status SessionRegistry::Close(const std::string& id) {
   }
   session->Close(absl::CancelledError(absl::StrCat("session ", id, " was closed")),
                  /*for_good=*/true);
-  return absl::OkStatus();
+  return session->Info();
 }
 
 void SessionRegistry::CloseAll(const absl::Status& why) {

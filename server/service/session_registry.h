@@ -60,8 +60,9 @@ class SessionRegistry {
                                               SessionOptions options);
   // NOT_FOUND naming the id.
   absl::StatusOr<std::shared_ptr<Session>> Find(const std::string& id) const;
-  // Closes the session for good (its journal records the end and is kept for replay).
-  absl::Status Close(const std::string& id);
+  // Closes the session for good (its journal records the end and is kept for replay); its
+  // final state and counts. NOT_FOUND naming the id.
+  absl::StatusOr<kerf::v1::SessionInfo> Close(const std::string& id);
   // Ends every session's streams with `why` (for a graceful shutdown).
   void CloseAll(const absl::Status& why);
   std::vector<std::shared_ptr<Session>> List() const;

@@ -271,11 +271,13 @@ grpc::ServerUnaryReactor* SimulatorService::ListSessions(grpc::CallbackServerCon
 
 grpc::ServerUnaryReactor* SimulatorService::CloseSession(
     grpc::CallbackServerContext* context, const kerf::v1::CloseSessionRequest* request,
-    kerf::v1::CloseSessionResponse*) {
+    kerf::v1::CloseSessionResponse* response) {
   const absl::StatusOr<std::shared_ptr<Session>> session =
       FindAuthorized(*registry_, request->session_id(), Role::kCutter, request->token());
-  return FinishUnary(context,
-                     session.ok() ? registry_->Close(request->session_id()) : session.status());
+  if (!session.ok()) return FinishUnary(context, session.status());
+  absl::StatusOr<kerf::v1::SessionInfo> closed = registry_->Close(request->session_id());
+  if (closed.ok()) *response->mutable_session() = *std::move(closed);
+  return FinishUnary(context, closed.status());
 }
 
 grpc::ServerUnaryReactor* SimulatorService::GetSnapshot(grpc::CallbackServerContext* context,
