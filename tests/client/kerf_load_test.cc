@@ -6,11 +6,9 @@
 #include <fstream>
 
 #include "absl/strings/str_cat.h"
+#include "client/loopback_server.h"
 #include "google/protobuf/util/json_util.h"
 #include "kerf/v1/load.pb.h"
-#include "service/grpc_server.h"
-#include "service/session_registry.h"
-#include "service/simulator_service.h"
 #include "support/run_command.h"
 
 namespace kerf::client {
@@ -18,27 +16,13 @@ namespace {
 
 class KerfLoadTest : public ::testing::Test {
  protected:
-  KerfLoadTest() : service_(&registry_) {
-    absl::StatusOr<service::RunningServer> running =
-        service::StartServer(service::LoopbackConfig(), &service_);
-    EXPECT_TRUE(running.ok()) << running.status();
-    server_ = std::move(running->server);
-    port_ = running->port;
-  }
-  ~KerfLoadTest() override {
-    registry_.CloseAll(absl::UnavailableError("test over"));
-    server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
-  }
-
   kerf::testing::CommandResult Load(const std::string& args) {
-    return kerf::testing::RunCommand(
-        absl::StrCat(KERF_LOAD_BINARY, " --server=127.0.0.1:", port_, " --progress=false ", args));
+    return kerf::testing::RunCommand(absl::StrCat(
+        KERF_LOAD_BINARY, " --server=127.0.0.1:", server_.port(), " --progress=false ", args));
   }
+  service::SessionRegistry& registry() { return server_.registry(); }
 
-  service::SessionRegistry registry_{service::RegistryOptions{}};
-  service::SimulatorService service_;
-  std::unique_ptr<grpc::Server> server_;
-  int port_ = 0;
+  kerf::testing::LoopbackServer server_;
 };
 
 // A scenario file for the lattice and its straight path, with `extra` text appended.
@@ -54,8 +38,8 @@ std::string WriteScenario(const std::string& name, const std::string& extra) {
 // (The timing objectives are left out: this checks counting, not this machine's speed.)
 TEST_F(KerfLoadTest, ItsCountsAgreeWithTheServers) {
   const std::string scenario = WriteScenario("counts", "settle_seconds: 0.5\n");
-  const kerf::testing::CommandResult run = Load(absl::StrCat(
-      "--scenario=", scenario, " --sessions=2 --observers=3 --duration=3 --json"));
+  const kerf::testing::CommandResult run = Load(
+      absl::StrCat("--scenario=", scenario, " --sessions=2 --observers=3 --duration=3 --json"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   kerf::v1::LoadReport report;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok()) << run.output;
@@ -70,7 +54,7 @@ TEST_F(KerfLoadTest, ItsCountsAgreeWithTheServers) {
   EXPECT_GT(report.latency_p50_ms(), 0);
   EXPECT_LE(report.latency_p50_ms(), report.latency_p99_ms());
   EXPECT_TRUE(report.objective_met());
-  EXPECT_TRUE(registry_.List().empty());  // it closed its sessions
+  EXPECT_TRUE(registry().List().empty());  // it closed its sessions
   std::remove(scenario.c_str());
 }
 
