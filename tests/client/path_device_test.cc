@@ -37,8 +37,9 @@ TEST(SimulatedHandDevice, TremblesAroundThePathByAboutItsAmplitude) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   int samples = 0;
   for (double t = 0; t <= 0.5; t += 0.001, ++samples) {
-    const Eigen::Vector3d tremble = hand.Sample(t)->tip - path.Sample(t)->tip;
-    EXPECT_NEAR((hand.Sample(t)->heel - path.Sample(t)->heel - tremble).norm(), 0, 1e-6)
+    const BladeSample held = *hand.Sample(t), planned = *path.Sample(t);
+    const Eigen::Vector3d tremble = held.tip - planned.tip;
+    EXPECT_NEAR((held.heel - planned.heel - tremble).norm(), 0, 1e-12)
         << "a rigid blade: heel and tip move together";
     largest = std::max(largest, tremble.cwiseAbs().maxCoeff());
     sum += tremble;
