@@ -147,6 +147,9 @@ HapticRecord RunHaptic(kerf::v1::Simulator::Stub& stub, HapticDevice& device,
       }
     });
     bool wrote = stream->Write(start_request);
+    // The session maps the first pose to its clock when it arrives: wait until the stream is
+    // up (its first frame) so that poses are not held back while the connection is made.
+    for (int i = 0; i < 500 && wrote && !got_frame; ++i) absl::SleepFor(absl::Milliseconds(10));
     double last_sent = -1;
     const absl::Duration pose_period = absl::Seconds(1 / options.pose_rate_hz);
     while (wrote) {

@@ -94,12 +94,14 @@ bool CutOnce(kerf::v1::Simulator::Stub& stub, const kerf::v1::CreateSessionRespo
   start.mutable_start()->set_level(kerf::v1::FORCES);
   start.mutable_start()->set_frame_rate_hz(scenario.cutter_frame_rate_hz());
   if (!stream->Write(start)) return false;
-  std::vector<absl::Time> sent(path.poses_size());
+  std::vector<absl::Time> sent(path.poses_size(), absl::InfinitePast());
   absl::Mutex sent_mutex;
+  std::atomic<bool> got_frame{false};
   std::thread reader([&] {
     kerf::v1::Frame frame;
     int seen = -1;
     while (stream->Read(&frame)) {
+      got_frame = true;
       const absl::Time now = absl::Now();
       ++progress->frames;
       absl::MutexLock lock(&tally.mutex);
@@ -108,13 +110,18 @@ bool CutOnce(kerf::v1::Simulator::Stub& stub, const kerf::v1::CreateSessionRespo
       for (int k = seen + 1; k < path.poses_size() && frame.blade_time() != 0; ++k) {
         if (path.poses(k).time() > frame.blade_time() + 1e-9) break;
         if (std::abs(path.poses(k).time() - frame.blade_time()) <= 1e-9) {
+          // Not sent yet in this pass: the frame still shows the last pass's pose.
           absl::MutexLock sent_lock(&sent_mutex);
+          if (sent[k] == absl::InfinitePast()) break;
           tally.latencies_ms.push_back(absl::ToDoubleMilliseconds(now - sent[k]));
           seen = k;
         }
       }
     }
   });
+  // The session maps the first pose to its clock when it arrives: wait until the stream is up
+  // (its first frame) so that poses are not held back while a connection is made.
+  for (int i = 0; i < 500 && !got_frame && !stop; ++i) absl::SleepFor(absl::Milliseconds(10));
   const absl::Time begin = absl::Now();
   const double t0 = path.poses(0).time();
   bool go_on = true;
