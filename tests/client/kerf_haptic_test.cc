@@ -1,14 +1,19 @@
 // kerf-haptic, the binary, against a real server on loopback.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "absl/time/clock.h"
 #include "client/loopback_server.h"
 #include "support/run_command.h"
+#include "support/server_process.h"
 
 namespace kerf::client {
 namespace {
@@ -53,6 +58,45 @@ TEST(KerfHaptic, CompletesAScriptedCutAndItsForceLoopHoldsItsRateWhileFramesAreD
   ASSERT_GE(lines.size(), 2u) << text.str();  // a header and a row per second
   EXPECT_EQ(lines[0].rfind("second,loop_ticks,", 0), 0u);
   std::remove(csv.c_str());
+}
+
+// The server is killed mid-cut and restarted on the same port (restoring the session from its
+// journal): kerf-haptic reconnects with backoff and finishes the cut in the same session.
+TEST(KerfHaptic, ReconnectsWhenTheServerRestartsMidCut) {
+  const std::string journal_dir =
+      absl::StrCat(::testing::TempDir(), "/kerf-haptic-", getpid(), "-journal");
+  std::filesystem::remove_all(journal_dir);
+  const std::string flags = absl::StrCat("--journal_dir=", journal_dir);
+  auto server = std::make_unique<kerf::testing::ServerProcess>(KERF_SERVER_BINARY, flags);
+  ASSERT_TRUE(server->started()) << server->said();
+  const int port = server->port();
+  kerf::v1::CreateSessionResponse created;
+  {
+    grpc::ClientContext context;
+    ASSERT_TRUE(server->stub().CreateSession(&context, {}, &created).ok());
+  }
+  FILE* haptic =
+      popen(absl::StrCat(KERF_HAPTIC_BINARY, " --server=127.0.0.1:", port,
+                         " --session_id=", created.session().session_id(),
+                         " --token=", created.cutter_token(), " --path=", KERF_SOURCE_DIR,
+                         "/server/cut/paths/lattice-straight.json --device=path --slowdown=16 2>&1")
+                .c_str(),
+            "r");
+  ASSERT_NE(haptic, nullptr);
+  absl::SleepFor(absl::Seconds(1.5));  // a third of the way through the 4 s cut
+  server->Stop(SIGKILL);
+  server = std::make_unique<kerf::testing::ServerProcess>(KERF_SERVER_BINARY, flags,
+                                                          absl::StrCat("127.0.0.1:", port));
+  ASSERT_TRUE(server->started()) << server->said();
+  EXPECT_NE(server->said().find("restored"), std::string::npos) << server->said();
+  std::string output;
+  char line[1024];
+  while (fgets(line, sizeof(line), haptic) != nullptr) output += line;
+  const int status = pclose(haptic);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  EXPECT_GE(NumberAfter(output, "ms; "), 1) << output;          // "...; N reconnects"
+  EXPECT_GT(NumberAfter(output, " ticks in "), 3.9) << output;  // the whole path was played
+  std::filesystem::remove_all(journal_dir);
 }
 
 TEST(KerfHaptic, BadArgumentsGetAClearError) {

@@ -25,67 +25,19 @@
 #include "google/protobuf/util/json_util.h"
 #include "kerf/v1/replay_report.pb.h"
 #include "kerf/v1/simulator.grpc.pb.h"
+#include "support/server_process.h"
 
 namespace kerf::service {
 namespace {
 
-// A kerf-server process: started with `flags`, until it says where it listens.
-class ServerProcess {
- public:
-  explicit ServerProcess(const std::string& flags) {
-    // The shell prints its pid and becomes the server (exec keeps the pid).
-    out_ = popen(absl::StrCat("sh -c 'echo $$; exec ", KERF_SERVER_BINARY, " --listen=127.0.0.1:0 ",
-                              flags, " 2>&1'")
-                     .c_str(),
-                 "r");
-    if (out_ == nullptr) return;
-    char line[1024];
-    if (fgets(line, sizeof(line), out_) == nullptr) return;
-    if (!absl::SimpleAtoi(absl::StripAsciiWhitespace(line), &pid_)) return;
-    while (fgets(line, sizeof(line), out_) != nullptr) {
-      const std::string text = line;
-      if (!absl::StartsWith(text, "kerf-server listening on ")) {
-        said_ += text;
-        continue;
-      }
-      (void)absl::SimpleAtoi(absl::StripAsciiWhitespace(text.substr(text.rfind(':') + 1)), &port_);
-      break;
-    }
-    stub_ = kerf::v1::Simulator::NewStub(
-        grpc::CreateChannel(absl::StrCat("127.0.0.1:", port_), grpc::InsecureChannelCredentials()));
-  }
-  ~ServerProcess() {
-    if (out_ == nullptr) return;
-    if (pid_ > 0) kill(pid_, SIGKILL);
-    pclose(out_);
-  }
+using kerf::testing::ServerProcess;
 
-  bool started() const { return port_ > 0; }
-  // What it printed before listening (restores, warnings).
-  const std::string& said() const { return said_; }
-  kerf::v1::Simulator::Stub& stub() { return *stub_; }
-
-  // Sends `signal` and waits for the exit; what it printed meanwhile, and its wait status.
-  std::pair<std::string, int> Stop(int signal) {
-    kill(pid_, signal);
-    std::string rest;
-    char line[1024];
-    while (fgets(line, sizeof(line), out_) != nullptr) rest += line;
-    const int status = pclose(out_);
-    out_ = nullptr;
-    return {rest, status};
-  }
-
- private:
-  FILE* out_ = nullptr;
-  int pid_ = 0;
-  int port_ = 0;
-  std::string said_;
-  std::unique_ptr<kerf::v1::Simulator::Stub> stub_;
-};
+ServerProcess KerfServer(const std::string& flags) {
+  return ServerProcess(KERF_SERVER_BINARY, flags);
+}
 
 TEST(KerfServer, ServesAndShutsDownGracefullyOnSigterm) {
-  ServerProcess server("--max_sessions=2 --journal_dir=");
+  ServerProcess server = KerfServer("--max_sessions=2 --journal_dir=");
   ASSERT_TRUE(server.started()) << server.said();
   kerf::v1::CreateSessionResponse created;
   {
@@ -168,7 +120,7 @@ TEST(KerfServer, RestoresASessionKilledMidwayBitForBitAndReplaysIt) {
   kerf::v1::CreateSessionResponse created;
   kerf::v1::Frame before;
   {
-    ServerProcess server(flags);
+    ServerProcess server = KerfServer(flags);
     ASSERT_TRUE(server.started()) << server.said();
     grpc::ClientContext context;
     ASSERT_TRUE(server.stub().CreateSession(&context, {}, &created).ok());
@@ -202,7 +154,7 @@ TEST(KerfServer, RestoresASessionKilledMidwayBitForBitAndReplaysIt) {
   const std::uintmax_t good_bytes = std::filesystem::file_size(journal);
   std::ofstream(journal, std::ios::binary | std::ios::app) << std::string("\x20\x00\x00", 3);
 
-  ServerProcess restarted(flags);
+  ServerProcess restarted = KerfServer(flags);
   ASSERT_TRUE(restarted.started()) << restarted.said();
   EXPECT_TRUE(absl::StrContains(restarted.said(), "is torn")) << restarted.said();
   EXPECT_TRUE(absl::StrContains(restarted.said(), absl::StrCat("restored ", journal)))
