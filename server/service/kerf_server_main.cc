@@ -3,8 +3,11 @@
 // scene, journaling sessions to ./kerf-journal and restoring those found there. SIGINT or
 // SIGTERM shut it down gracefully: every stream ends with UNAVAILABLE, and the sessions stay in
 // the journal to be restored at the next start.
+#include <fcntl.h>
 #include <grpcpp/grpcpp.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -35,16 +38,29 @@ ABSL_FLAG(std::string, journal_dir, "kerf-journal",
           "directory of the session journals (made if missing); sessions found there are "
           "restored at start; empty: no journal");
 
+namespace {
+int signal_pipe[2] = {-1, -1};  // written by the signal handler, read by the shutdown thread
+}  // namespace
+
 int main(int argc, char** argv) {
   absl::SetProgramUsageMessage("kerf-server [--listen=HOST:PORT] [--default_scene=NAME] ...");
   absl::ParseCommandLine(argc, argv);
 
-  // Signals are taken by a thread of their own (blocked here, before any other thread starts).
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  // SIGINT and SIGTERM are caught whichever thread they land on (gRPC starts threads of its
+  // own before main, so blocking them here would not cover those) and handed to a thread of
+  // ours through a pipe.
+  if (pipe2(signal_pipe, O_CLOEXEC) != 0) {
+    std::perror("kerf-server: pipe");
+    return 1;
+  }
+  struct sigaction action = {};
+  action.sa_handler = [](int signal) {
+    const char byte = static_cast<char>(signal);
+    (void)!write(signal_pipe[1], &byte, 1);  // async-signal-safe
+  };
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 
   kerf::service::RegistryOptions options;
   options.max_sessions = static_cast<std::size_t>(absl::GetFlag(FLAGS_max_sessions));
@@ -104,8 +120,10 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
 
   std::thread waiter([&] {
-    int signal = 0;
-    sigwait(&signals, &signal);
+    char byte = 0;
+    while (read(signal_pipe[0], &byte, 1) < 0 && errno == EINTR) {
+    }
+    const int signal = byte;
     std::printf("kerf-server: signal %d, shutting down\n", signal);
     std::fflush(stdout);
     registry.CloseAll(absl::UnavailableError("the server is shutting down"));

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "absl/strings/ascii.h"
 #include "absl/strings/escaping.h"
@@ -57,9 +58,14 @@ TEST(KerfServer, ServesAndShutsDownGracefullyOnSigterm) {
   ASSERT_TRUE(reader->Read(&frame));
   EXPECT_TRUE(frame.keyframe());
 
-  const auto [rest, exit_status] = server.Stop(SIGTERM);
+  // The observer reads on while the server stops (a stream nobody reads would hold the
+  // shutdown to its 5 s deadline).
+  std::pair<std::string, int> stopped;
+  std::thread stopper([&] { stopped = server.Stop(SIGTERM); });
   while (reader->Read(&frame)) {
   }
+  stopper.join();
+  const auto& [rest, exit_status] = stopped;
   const grpc::Status status = reader->Finish();
   EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAVAILABLE);
   EXPECT_EQ(status.error_message(), "the server is shutting down");
