@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# No Docker engine runs here, so this checks what can be checked without one:
+#   1. docker/Dockerfile builds on bookworm and runs on bookworm-slim, and installs packages
+#      only through scripts/setup (all of them to build, --runtime to run);
+#   2. every shared library the binaries it copies load belongs to a runtime package of
+#      scripts/packages.txt (or to the slim image's own libc6, libgcc-s1, zlib1g);
+#   3. the image's command, with certificates from docker/make-certs, serves TLS and its health
+#      check (kerf-health, as the Dockerfile and compose.yaml call it) answers SERVING;
+#   4. compose.yaml has the server with its health check and a load-test profile.
+# Usage: docker_test.sh SOURCE_DIR BINARY_DIR
+set -euo pipefail
+src=$1
+bin=$2
+fail() { echo "docker_test: $*" >&2; exit 1; }
+
+dockerfile=$src/docker/Dockerfile
+grep -q '^FROM debian:bookworm AS build$' "$dockerfile" || fail "build stage is not debian:bookworm"
+grep -q '^FROM debian:bookworm-slim$' "$dockerfile" || fail "runtime stage is not debian:bookworm-slim"
+grep -q '^RUN scripts/setup$' "$dockerfile" || fail "build stage does not run scripts/setup"
+grep -q '^RUN /opt/kerf/scripts/setup --runtime' "$dockerfile" ||
+  fail "runtime stage does not run scripts/setup --runtime"
+! grep -Eq 'apt-get|apt install|dpkg -i' "$dockerfile" || fail "Dockerfile installs packages itself"
+grep -q 'scripts/packages.txt' "$dockerfile" || fail "Dockerfile does not copy scripts/packages.txt"
+
+runtime=$(grep '^runtime ' "$src/scripts/packages.txt" | cut -d' ' -f2)
+base="libc6 libgcc-s1 zlib1g"
+for name in kerf-server kerf kerf-load kerf-haptic kerf-script kerf-health; do
+  grep -q "/$name " "$dockerfile" || grep -q "/$name\$" "$dockerfile" ||
+    grep -q "/$name \\\\" "$dockerfile" || fail "Dockerfile does not copy $name"
+  binary=$(find "$bin" -type f -name "$name" -perm -u+x | head -1)
+  [ -n "$binary" ] || fail "no built $name under $bin"
+  for lib in $(ldd "$binary" | awk '/=>/ {print $3}'); do
+    package=$(dpkg -S "$lib" 2>/dev/null || dpkg -S "/usr$lib" 2>/dev/null || true)
+    package=${package%%:*}
+    [ -n "$package" ] || fail "$name loads $lib, which no package owns"
+    echo " $runtime $base " | tr '\n' ' ' | grep -q " $package " ||
+      fail "$name loads $lib from $package, which is not a runtime package in scripts/packages.txt"
+  done
+done
+
+certs=$(mktemp -d)
+trap 'kill "$server" 2>/dev/null || true; rm -rf "$certs"' EXIT
+"$src/docker/make-certs" "$certs" >/dev/null
+log=$certs/server.log
+"$(find "$bin" -type f -name kerf-server | head -1)" --listen=127.0.0.1:0 --journal_dir="$certs/journal" \
+  --tls_cert="$certs/server.pem" --tls_key="$certs/server.key" >"$log" 2>&1 &
+server=$!
+for _ in $(seq 100); do grep -q "listening on" "$log" 2>/dev/null && break; sleep 0.1; done
+address=$(sed -n 's/^kerf-server listening on //p' "$log")
+[ -n "$address" ] || fail "kerf-server with TLS did not start: $(cat "$log")"
+health=$(find "$bin" -type f -name kerf-health | head -1)
+"$health" --server="$address" --tls_ca="$certs/ca.pem" | grep -q SERVING ||
+  fail "kerf-health over TLS did not answer SERVING"
+! "$health" --server="$address" --timeout_seconds=2 >/dev/null 2>&1 ||
+  fail "kerf-health without the CA was answered"
+
+compose=$src/docker/compose.yaml
+grep -q 'kerf-health' "$compose" || fail "compose.yaml has no kerf-health health check"
+grep -q 'profiles: \[load\]' "$compose" || fail "compose.yaml has no load profile"
+grep -q '"50051:50051"' "$compose" || fail "compose.yaml does not publish the gRPC port"
+echo "docker_test: ok"
