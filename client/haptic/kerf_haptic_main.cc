@@ -16,6 +16,7 @@
 #include "common/blade_path_file.h"
 #include "common/channel.h"
 #include "common/latency_summary.h"
+#include "common/session_calls.h"
 #include "haptic/haptic_session.h"
 #include "haptic/keyboard_device.h"
 #include "haptic/path_device.h"
@@ -115,15 +116,11 @@ int main(int argc, char** argv) {
   options.cutter_token = absl::GetFlag(FLAGS_token);
   std::string made;  // the session this run made (closed at the end)
   if (options.session_id.empty()) {
-    kerf::v1::CreateSessionRequest create;
-    create.set_scene_name(absl::GetFlag(FLAGS_scene));
-    kerf::v1::CreateSessionResponse created;
-    grpc::ClientContext context;
-    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
-    const grpc::Status s = stub->CreateSession(&context, create, &created);
-    if (!s.ok()) return Fail(1, absl::StrCat("CreateSession: ", s.error_message()));
-    options.session_id = made = created.session().session_id();
-    options.cutter_token = created.cutter_token();
+    const absl::StatusOr<kerf::v1::CreateSessionResponse> created =
+        kerf::client::CreateSession(*stub, absl::GetFlag(FLAGS_scene));
+    if (!created.ok()) return Fail(1, std::string(created.status().message()));
+    options.session_id = made = created->session().session_id();
+    options.cutter_token = created->cutter_token();
     absl::SleepFor(absl::Seconds(absl::GetFlag(FLAGS_settle_seconds)));
   }
   options.loop_rate_hz = absl::GetFlag(FLAGS_loop_rate_hz);
@@ -134,14 +131,7 @@ int main(int argc, char** argv) {
   options.force.interpolate = absl::GetFlag(FLAGS_interpolate);
   const kerf::client::HapticRecord r = kerf::client::RunHaptic(*stub, *device, options);
   device.reset();  // a keyboard gives the terminal back
-  if (!made.empty()) {
-    kerf::v1::CloseSessionRequest close;
-    close.set_session_id(made);
-    close.set_token(options.cutter_token);
-    kerf::v1::CloseSessionResponse closed;
-    grpc::ClientContext context;
-    (void)stub->CloseSession(&context, close, &closed);
-  }
+  if (!made.empty()) (void)kerf::client::CloseSession(*stub, made, options.cutter_token);
 
   std::vector<double> periods;
   for (std::size_t i = 1; i < r.tick_times.size(); ++i) {

@@ -11,6 +11,7 @@
 #include "absl/time/clock.h"
 #include "common/channel.h"
 #include "common/latency_summary.h"
+#include "common/session_calls.h"
 #include "kerf/v1/simulator.grpc.pb.h"
 
 namespace kerf::client {
@@ -174,23 +175,16 @@ absl::StatusOr<kerf::v1::LoadReport> RunLoad(const LoadTarget& target,
   if (stub == nullptr) return absl::InvalidArgumentError("cannot open a channel");
   std::vector<SessionClients> sessions(scenario.sessions());
   for (SessionClients& s : sessions) {
-    kerf::v1::CreateSessionRequest request;
-    request.set_scene_name(scenario.scene_name());
-    grpc::ClientContext context;
-    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
-    const grpc::Status status = stub->CreateSession(&context, request, &s.created);
-    if (!status.ok()) {
+    absl::StatusOr<kerf::v1::CreateSessionResponse> created =
+        CreateSession(*stub, scenario.scene_name());
+    if (!created.ok()) {
       for (SessionClients& made : sessions) {  // leave nothing behind
         if (made.created.session().session_id().empty()) break;
-        kerf::v1::CloseSessionRequest close;
-        close.set_session_id(made.created.session().session_id());
-        close.set_token(made.created.cutter_token());
-        kerf::v1::CloseSessionResponse closed;
-        grpc::ClientContext close_context;
-        (void)stub->CloseSession(&close_context, close, &closed);
+        (void)CloseSession(*stub, made.created.session().session_id(), made.created.cutter_token());
       }
-      return absl::UnavailableError(absl::StrCat("CreateSession: ", status.error_message()));
+      return absl::UnavailableError(created.status().message());
     }
+    s.created = *std::move(created);
   }
 
   Tally tally;
@@ -225,17 +219,15 @@ absl::StatusOr<kerf::v1::LoadReport> RunLoad(const LoadTarget& target,
   // Closing a session ends its observers' streams after the frames already on their way.
   kerf::v1::LoadReport report;
   for (SessionClients& s : sessions) {
-    kerf::v1::CloseSessionRequest close;
-    close.set_session_id(s.created.session().session_id());
-    close.set_token(s.created.cutter_token());
-    kerf::v1::CloseSessionResponse closed;
-    grpc::ClientContext context;
-    const grpc::Status status = stub->CloseSession(&context, close, &closed);
-    if (!status.ok()) tally.Error(progress, absl::StrCat("close: ", status.error_message()));
-    report.set_server_poses_received(report.server_poses_received() +
-                                     closed.session().poses_received());
+    const absl::StatusOr<kerf::v1::SessionInfo> closed =
+        CloseSession(*stub, s.created.session().session_id(), s.created.cutter_token());
+    if (!closed.ok()) {
+      tally.Error(progress, std::string(closed.status().message()));
+      continue;
+    }
+    report.set_server_poses_received(report.server_poses_received() + closed->poses_received());
     report.set_server_observer_frames_sent(report.server_observer_frames_sent() +
-                                           closed.session().observer_frames_sent());
+                                           closed->observer_frames_sent());
   }
   for (std::thread& t : observers) t.join();
 

@@ -19,6 +19,7 @@
 #include "common/blade_path_file.h"
 #include "common/channel.h"
 #include "common/latency_summary.h"
+#include "common/session_calls.h"
 #include "kerf/v1/simulator.grpc.pb.h"
 
 ABSL_FLAG(std::string, server, "127.0.0.1:50051", "the kerf-server to cut against, host:port");
@@ -62,15 +63,10 @@ int main(int argc, char** argv) {
       kerf::client::OpenChannel(absl::GetFlag(FLAGS_server), absl::GetFlag(FLAGS_tls_ca));
   if (!channel.ok()) return Fail(std::string(channel.status().message()));
   auto stub = kerf::v1::Simulator::NewStub(*channel);
-  kerf::v1::CreateSessionRequest create;
-  create.set_scene_name(absl::GetFlag(FLAGS_scene));
-  kerf::v1::CreateSessionResponse created;
-  {
-    grpc::ClientContext context;
-    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
-    const grpc::Status s = stub->CreateSession(&context, create, &created);
-    if (!s.ok()) return Fail(absl::StrCat("CreateSession: ", s.error_message()));
-  }
+  const absl::StatusOr<kerf::v1::CreateSessionResponse> made =
+      kerf::client::CreateSession(*stub, absl::GetFlag(FLAGS_scene));
+  if (!made.ok()) return Fail(std::string(made.status().message()));
+  const kerf::v1::CreateSessionResponse& created = *made;
   const kerf::v1::SessionInfo& info = created.session();
 
   // The observer.
@@ -142,29 +138,18 @@ int main(int argc, char** argv) {
   reading.join();
   const grpc::Status cut_status = cut->Finish();
   absl::SleepFor(absl::Milliseconds(200));  // the cut opens; the observer sees it
-  kerf::v1::SessionInfo after;
-  {
-    kerf::v1::ListSessionsResponse sessions;
-    grpc::ClientContext context;
-    (void)stub->ListSessions(&context, {}, &sessions);
-    for (const auto& s : sessions.sessions()) {
-      if (s.session_id() == info.session_id()) after = s;
-    }
-    grpc::ClientContext close_context;
-    kerf::v1::CloseSessionRequest close;
-    close.set_session_id(info.session_id());
-    close.set_token(created.cutter_token());
-    kerf::v1::CloseSessionResponse closed;
-    (void)stub->CloseSession(&close_context, close, &closed);
-  }
+  // Closing returns the session as it ended (and ends the observer's stream).
+  const absl::StatusOr<kerf::v1::SessionInfo> after =
+      kerf::client::CloseSession(*stub, info.session_id(), created.cutter_token());
   watching.join();
   if (!cut_status.ok()) return Fail(absl::StrCat("Cut: ", cut_status.error_message()));
+  if (!after.ok()) return Fail(std::string(after.status().message()));
 
   absl::MutexLock lock(&mutex);
   const kerf::client::Summary latency = kerf::client::Summarize(latencies_ms);
   std::printf("session %s, scene %s: %u tets before the cut, %lu after\n",
               info.session_id().c_str(), info.scene_name().c_str(),
-              static_cast<unsigned>(info.tets()), static_cast<unsigned long>(after.tets()));
+              static_cast<unsigned>(info.tets()), static_cast<unsigned long>(after->tets()));
   std::printf(
       "cutter: %d poses sent in %.2f s, %zu frames back, pose-to-frame latency p50 %.2f ms, "
       "p99 %.2f ms; largest tool force %.3f N\n",
