@@ -20,6 +20,7 @@
 #include "service/grpc_server.h"
 #include "service/session_registry.h"
 #include "service/simulator_service.h"
+#include "service/web_server.h"
 
 ABSL_FLAG(std::string, listen, "127.0.0.1:50051",
           "address to listen on, host:port (port 0 picks a free one, printed at start)");
@@ -34,6 +35,10 @@ ABSL_FLAG(std::string, tls_cert, "", "PEM certificate chain: serve TLS (with --t
 ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls_cert");
 ABSL_FLAG(bool, allow_remote_plaintext, false,
           "serve plaintext on a non-loopback address (refused otherwise)");
+ABSL_FLAG(std::string, http_listen, "127.0.0.1:8080",
+          "address of the browser's HTTP and WebSocket port, host:port (port 0 picks a free one, "
+          "printed at start; empty: none)");
+ABSL_FLAG(std::string, web_root, "web/dist", "the web viewer's built files, served over HTTP");
 ABSL_FLAG(std::string, journal_dir, "kerf-journal",
           "directory of the session journals (made if missing); sessions found there are "
           "restored at start; empty: no journal");
@@ -113,6 +118,23 @@ int main(int argc, char** argv) {
     return absl::IsInvalidArgument(running.status()) ? 2 : 1;
   }
   grpc::Server* server = running->server.get();
+  std::unique_ptr<kerf::service::WebServer> web;
+  if (const std::string http = absl::GetFlag(FLAGS_http_listen); !http.empty()) {
+    kerf::service::WebServerConfig web_config;
+    web_config.listen = http;
+    web_config.web_root = absl::GetFlag(FLAGS_web_root);
+    web_config.allow_remote_plaintext = absl::GetFlag(FLAGS_allow_remote_plaintext);
+    absl::StatusOr<std::unique_ptr<kerf::service::WebServer>> started =
+        kerf::service::WebServer::Start(web_config, &registry);
+    if (!started.ok()) {
+      std::fprintf(stderr, "kerf-server: %s\n", std::string(started.status().message()).c_str());
+      registry.CloseAll(absl::UnavailableError("the server could not start"));
+      server->Shutdown();
+      return absl::IsInvalidArgument(started.status()) ? 2 : 1;
+    }
+    web = *std::move(started);
+    std::printf("kerf-server web on %s:%d\n", http.substr(0, http.rfind(':')).c_str(), web->port());
+  }
   const int port = running->port;
   const std::string address = absl::GetFlag(FLAGS_listen);
   std::printf("kerf-server listening on %s:%d\n", address.substr(0, address.rfind(':')).c_str(),

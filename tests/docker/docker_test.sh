@@ -45,7 +45,7 @@ certs=$(mktemp -d)
 trap 'kill "$server" 2>/dev/null || true; rm -rf "$certs"' EXIT
 "$src/docker/make-certs" "$certs" >/dev/null
 log=$certs/server.log
-"$(find "$bin" -type f -name kerf-server | head -1)" --listen=127.0.0.1:0 --journal_dir="$certs/journal" \
+"$(find "$bin" -type f -name kerf-server | head -1)" --listen=127.0.0.1:0 --http_listen= --journal_dir="$certs/journal" \
   --tls_cert="$certs/server.pem" --tls_key="$certs/server.key" >"$log" 2>&1 &
 server=$!
 for _ in $(seq 100); do grep -q "listening on" "$log" 2>/dev/null && break; sleep 0.1; done

@@ -23,10 +23,10 @@ class ServerProcess {
   ServerProcess(const std::string& binary, const std::string& flags,
                 const std::string& listen = "127.0.0.1:0") {
     // The shell prints its pid and becomes the server (exec keeps the pid).
-    out_ = popen(
-        absl::StrCat("sh -c 'echo $$; exec ", binary, " --listen=", listen, " ", flags, " 2>&1'")
-            .c_str(),
-        "r");
+    out_ = popen(absl::StrCat("sh -c 'echo $$; exec ", binary, " --listen=", listen,
+                              " --http_listen=127.0.0.1:0 ", flags, " 2>&1'")
+                     .c_str(),
+                 "r");
     if (out_ == nullptr) return;
     char line[1024];
     if (fgets(line, sizeof(line), out_) == nullptr) return;
