@@ -27,6 +27,7 @@ ABSL_FLAG(std::string, session_id, "", "cut in this session (with --token); empt
 ABSL_FLAG(std::string, token, "", "the session's cutter token");
 ABSL_FLAG(std::string, scene, "", "embedded scene of the session it makes (empty: the default)");
 ABSL_FLAG(double, settle_seconds, 1, "after making a session, let the tissue settle this long");
+ABSL_FLAG(bool, keep_session, false, "leave the session it made open at the end (to watch it)");
 ABSL_FLAG(std::string, device, "path", "path, simulated or keyboard");
 ABSL_FLAG(std::string, path, "", "blade path file (path and simulated devices; keyboard: start)");
 ABSL_FLAG(double, tremble_mm, 0.1, "tremble of the simulated hand, mm");
@@ -121,6 +122,9 @@ int main(int argc, char** argv) {
     if (!created.ok()) return Fail(1, std::string(created.status().message()));
     options.session_id = made = created->session().session_id();
     options.cutter_token = created->cutter_token();
+    std::printf("kerf-haptic: session %s, observer token %s\n", made.c_str(),
+                created->observer_token().c_str());
+    std::fflush(stdout);
     absl::SleepFor(absl::Seconds(absl::GetFlag(FLAGS_settle_seconds)));
   }
   options.loop_rate_hz = absl::GetFlag(FLAGS_loop_rate_hz);
@@ -131,7 +135,9 @@ int main(int argc, char** argv) {
   options.force.interpolate = absl::GetFlag(FLAGS_interpolate);
   const kerf::client::HapticRecord r = kerf::client::RunHaptic(*stub, *device, options);
   device.reset();  // a keyboard gives the terminal back
-  if (!made.empty()) (void)kerf::client::CloseSession(*stub, made, options.cutter_token);
+  if (!made.empty() && !absl::GetFlag(FLAGS_keep_session)) {
+    (void)kerf::client::CloseSession(*stub, made, options.cutter_token);
+  }
 
   std::vector<double> periods;
   for (std::size_t i = 1; i < r.tick_times.size(); ++i) {

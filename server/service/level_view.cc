@@ -45,6 +45,10 @@ void FillHeader(kerf::v1::Level level, std::uint64_t sequence, std::uint64_t top
   frame->set_topology_version(topology_version);
   SetVector(report.tool_force, frame->mutable_tool_force());
   SetVector(report.tool_torque, frame->mutable_tool_torque());
+  if (report.blade) {
+    SetVector(report.blade->tip, frame->mutable_blade_tip());
+    SetVector(report.blade->heel, frame->mutable_blade_heel());
+  }
   *frame->mutable_statistics() = report.statistics;
 }
 

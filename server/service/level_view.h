@@ -6,11 +6,13 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
+#include "cut/blade.h"
 #include "kerf/v1/frame.pb.h"
 #include "mesh/tet_mesh.h"
 #include "sim/simulation.h"
@@ -23,6 +25,7 @@ struct TickReport {
   double blade_time = 0;       // s, on the cutter's clock (see Frame.blade_time)
   Eigen::Vector3d tool_force = Eigen::Vector3d::Zero();   // N
   Eigen::Vector3d tool_torque = Eigen::Vector3d::Zero();  // N m
+  std::optional<cut::BladePose> blade;                    // the blade's last applied pose
   kerf::v1::StepStatistics statistics;
   // The elastic force -K u on every vertex slot (N), computed once per tick by the session
   // when a FORCES frame is due; empty otherwise. Valid during the tick only.

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "mesh/boundary_surface.h"
 #include "sim/tool_reaction.h"
 
 namespace kerf::service {
@@ -302,6 +303,7 @@ kerf::v1::SessionInfo Session::Info() const {
   absl::MutexLock lock(&mutex_);
   info.set_simulation_time(simulation_time_);
   info.set_tets(simulation_->mesh().tet_count());
+  info.set_surface_triangles(mesh::ExtractBoundarySurface(simulation_->mesh()).size());
   info.set_vertices(simulation_->mesh().vertex_count());
   std::size_t observers = 0;
   std::uint64_t frames_sent = frames_sent_to_departed_;
@@ -432,6 +434,7 @@ void Session::Tick() {
   TickReport report;
   report.simulation_time = simulation_time_;
   report.blade_time = blade_time_;
+  report.blade = last_applied_;
   if (last_applied_) {
     const sim::ToolReaction reaction =
         sim::MeasureToolReaction(*simulation_, *last_applied_, before_last_applied_);

@@ -124,8 +124,7 @@ absl::StatusOr<CreatedSession> SessionRegistry::CreateReplay(const RecordedSessi
   options.frame_rate_hz = recorded.start.frame_rate_hz();
   auto [tokens, issued] = SessionTokens::Generate();
   absl::StatusOr<std::unique_ptr<Session>> session = Session::Create(
-      {NewSessionId(), *std::move(scene), std::move(tokens), nullptr, recorded.events, 0},
-      options);
+      {NewSessionId(), *std::move(scene), std::move(tokens), nullptr, recorded.events, 0}, options);
   if (!session.ok()) return session.status();
   std::shared_ptr<Session> shared = *std::move(session);
   if (absl::Status s = Add(shared); !s.ok()) return s;

@@ -1,0 +1,105 @@
+// The viewer in a real browser (Debian's Chromium, headless, driven by playwright-core): it
+// connects to a real kerf-server, draws the server's surface, follows a cut that kerf-haptic
+// makes, and two tabs show the same frame.
+//   node test/viewer_test.mjs KERF_SERVER KERF_HAPTIC    (from web/, after `npm run build`)
+// Screenshots go to test/screenshots/.
+import { spawn } from 'node:child_process';
+import { mkdirSync } from 'node:fs';
+import { createInterface } from 'node:readline';
+import { chromium } from 'playwright-core';
+
+const [server, haptic] = process.argv.slice(2);
+let failures = 0;
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures += 1;
+}
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+// Starts a process; `lines(pattern)` resolves with the first line of its output matching it.
+function start(command, args) {
+  const child = spawn(command, args, { stdio: ['ignore', 'pipe', 'inherit'] });
+  const seen = [], waiting = [];
+  createInterface({ input: child.stdout }).on('line', (line) => {
+    seen.push(line);
+    for (const w of waiting) { const m = line.match(w.pattern); if (m) w.resolve(m); }
+  });
+  const line = (pattern) => new Promise((resolve, reject) => {
+    for (const l of seen) { const m = l.match(pattern); if (m) return resolve(m); }
+    waiting.push({ pattern, resolve });
+    child.on('exit', (code) => reject(new Error(`${command} exited (${code}) before ${pattern}`)));
+  });
+  return { child, line };
+}
+
+async function waitFor(page, predicate, what, ms = 20000) {
+  const end = Date.now() + ms;
+  while (Date.now() < end) {
+    if (await page.evaluate(predicate)) return true;
+    await sleep(100);
+  }
+  check(false, `${what} (timed out; page state ${JSON.stringify(await page.evaluate(() => window.kerf))})`);
+  return false;
+}
+
+async function sessionInfo(base, id) {
+  const list = await (await fetch(`${base}/api/sessions`)).json();
+  return (list.sessions ?? []).find((s) => s.session_id === id);
+}
+
+const kerfServer = start(server, ['--listen=127.0.0.1:0', '--http_listen=127.0.0.1:0',
+                                  '--journal_dir=', '--web_root=dist']);
+const browser = await chromium.launch({
+  executablePath: '/usr/bin/chromium',
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
+         '--disable-component-update', '--no-first-run'],
+});
+try {
+  const [, web] = await kerfServer.line(/^kerf-server web on (\S+)$/);
+  const base = `http://${web}`;
+  const [, grpc] = await kerfServer.line(/^kerf-server listening on (\S+)$/);
+  // A session whose tissue settles for 5 s (the deferred cutter drops cuts through moving
+  // tissue), then a 4 s cut along the straight path.
+  const cutter = start(haptic, [`--server=${grpc}`, '--path=../server/cut/paths/lattice-straight.json',
+                                '--device=path', '--slowdown=16', '--settle_seconds=5',
+                                '--keep_session']);
+  const [, session, token] = await cutter.line(/^kerf-haptic: session (\S+), observer token (\S+)$/);
+  const pages = [await browser.newPage({ viewport: { width: 960, height: 640 } }),
+                 await browser.newPage({ viewport: { width: 960, height: 640 } })];
+  for (const page of pages) await page.goto(`${base}/#session=${session}&token=${token}`);
+  const [first, second] = pages;
+  let before = { surface_triangles: 0 };
+  if (await waitFor(first, () => window.kerf.triangles > 0 && window.kerf.connected, 'the page draws the surface')) {
+    before = await sessionInfo(base, session);
+    const drawn = await first.evaluate(() => window.kerf.triangles);
+    check(drawn === Number(before.surface_triangles),
+          `the page draws the server's surface (${drawn} triangles; the server has ${before.surface_triangles})`);
+  }
+  mkdirSync('test/screenshots', { recursive: true });
+  const uncut = await first.screenshot({ path: 'test/screenshots/before-cut.png' });
+  await new Promise((resolve) => cutter.child.on('exit', resolve));  // the cut is done
+  await waitFor(first, () => window.kerf.onCut > 0, 'the cut appears on the page');
+  await sleep(500);
+  const after = await sessionInfo(base, session);
+  const drawnAfter = await first.evaluate(() => window.kerf.triangles);
+  check(drawnAfter === Number(after.surface_triangles) && drawnAfter > Number(before.surface_triangles),
+        `after the cut the page draws the server's surface (${drawnAfter} triangles; the server has ${after.surface_triangles})`);
+  const cut = await first.screenshot({ path: 'test/screenshots/after-cut.png' });
+  check(!uncut.equals(cut), 'the picture changed with the cut');
+  // Both tabs drew the same frames: the numbers each drew lately overlap, and they are at most
+  // at most half a second apart now (the two are read one after the other).
+  const [a, b] = await Promise.all(pages.map((p) => p.evaluate(() => window.kerf.recent)));
+  const common = a.filter((n) => b.includes(n));
+  check(common.length > 100 && Math.abs(a.at(-1) - b.at(-1)) <= 30,
+        `two tabs show the same frames (${common.length} frame numbers in common; now ${a.at(-1)} and ${b.at(-1)})`);
+  const stats = await first.evaluate(() => window.kerf);
+  check(stats.fps > 30 && stats.gaps <= stats.frames / 20,
+        `live at ${stats.fps.toFixed(1)} frames/s, ${stats.gaps} gaps in ${stats.frames} frames`);
+} catch (e) {
+  check(false, `${e}`);
+} finally {
+  await browser.close();
+  kerfServer.child.kill('SIGTERM');
+}
+console.log(failures === 0 ? 'viewer_test: all passed' : `viewer_test: ${failures} failed`);
+process.exit(failures === 0 ? 0 : 1);
