@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # No Docker engine runs here, so this checks what can be checked without one:
 #   1. docker/Dockerfile builds on bookworm and runs on bookworm-slim, and installs packages
-#      only through scripts/setup (all of them to build, --runtime to run);
+#      only through scripts/setup (--image-build to build, --runtime to run), builds the web
+#      viewer and serves it on its HTTP port;
 #   2. every shared library the binaries it copies load belongs to a runtime package of
 #      scripts/packages.txt (or to the slim image's own libc6, libgcc-s1, zlib1g);
 #   3. the image's command, with certificates from docker/make-certs, serves TLS and its health
@@ -16,7 +17,12 @@ fail() { echo "docker_test: $*" >&2; exit 1; }
 dockerfile=$src/docker/Dockerfile
 grep -q '^FROM debian:bookworm AS build$' "$dockerfile" || fail "build stage is not debian:bookworm"
 grep -q '^FROM debian:bookworm-slim$' "$dockerfile" || fail "runtime stage is not debian:bookworm-slim"
-grep -q '^RUN scripts/setup$' "$dockerfile" || fail "build stage does not run scripts/setup"
+grep -q '^RUN scripts/setup --image-build$' "$dockerfile" ||
+  fail "build stage does not run scripts/setup --image-build"
+grep -q 'cd web && npm ci' "$dockerfile" || fail "build stage does not build the web viewer"
+grep -q 'COPY --from=build /src/web/dist' "$dockerfile" || fail "the image lacks the web viewer"
+grep -q '^EXPOSE 50051 8080$' "$dockerfile" || fail "the image does not expose gRPC and HTTP"
+grep -q -- '--http_listen=0.0.0.0:8080' "$dockerfile" || fail "the image's server has no HTTP port"
 grep -q '^RUN /opt/kerf/scripts/setup --runtime' "$dockerfile" ||
   fail "runtime stage does not run scripts/setup --runtime"
 ! grep -Eq 'apt-get|apt install|dpkg -i' "$dockerfile" || fail "Dockerfile installs packages itself"
@@ -61,4 +67,6 @@ compose=$src/docker/compose.yaml
 grep -q 'kerf-health' "$compose" || fail "compose.yaml has no kerf-health health check"
 grep -q 'profiles: \[load\]' "$compose" || fail "compose.yaml has no load profile"
 grep -q '"50051:50051"' "$compose" || fail "compose.yaml does not publish the gRPC port"
+grep -q '"127.0.0.1:8080:8080"' "$compose" || fail "compose.yaml does not publish the HTTP port on loopback"
+grep -q '^image nodejs$' "$src/scripts/packages.txt" || fail "packages.txt lacks the image's Node.js"
 echo "docker_test: ok"
