@@ -13,7 +13,8 @@ const $ = (id) => document.getElementById(id);
 
 // --- what the page shows, also read by the browser tests -----------------------------------
 const state = { connected: false, triangles: 0, onCut: 0, sequence: 0, gaps: 0, fps: 0,
-                latencyMs: 0, tets: 0, frames: 0, reconnects: 0, error: '', recent: [] };
+                latencyMs: 0, tets: 0, frames: 0, reconnects: 0, error: '', recent: [],
+                forceFrames: 0, largestForce: 0 };
 window.kerf = state;
 
 // --- the scene ------------------------------------------------------------------------------
@@ -60,6 +61,7 @@ function draw(view, forces) {
   if (forces) for (let i = 0; i < forces.values.length; i += 3) {
     largest = Math.max(largest, Math.hypot(forces.values[i], forces.values[i + 1], forces.values[i + 2]));
   }
+  state.largestForce = largest;
   const heat = new THREE.Color();
   let cut = 0;
   tris.forEach((t, k) => {
@@ -148,7 +150,7 @@ function connect() {
     state.tets = Number(frame.statistics?.tets ?? 0);
     state.latencyMs = Date.now() - Number(frame.sendTimeUnixNanos) / 1e6;
   }));
-  if (forces) sockets.push(open('FORCES', forces, () => {}));
+  if (forces) sockets.push(open('FORCES', forces, () => { state.forceFrames += 1; }));
 }
 
 function reconnect(why) {

@@ -4,7 +4,8 @@
 //   node test/viewer_test.mjs KERF_SERVER KERF_HAPTIC    (from web/, after `npm run build`)
 // Screenshots go to test/screenshots/.
 import { spawn } from 'node:child_process';
-import { mkdirSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { createInterface } from 'node:readline';
 import { chromium } from 'playwright-core';
 
@@ -47,8 +48,9 @@ async function sessionInfo(base, id) {
   return (list.sessions ?? []).find((s) => s.session_id === id);
 }
 
-const kerfServer = start(server, ['--listen=127.0.0.1:0', '--http_listen=127.0.0.1:0',
-                                  '--journal_dir=', '--web_root=dist']);
+const journal = mkdtempSync(`${tmpdir()}/kerf-viewer-`);
+let kerfServer = start(server, ['--listen=127.0.0.1:0', '--http_listen=127.0.0.1:0',
+                                `--journal_dir=${journal}`, '--web_root=dist']);
 const browser = await chromium.launch({
   executablePath: '/usr/bin/chromium',
   args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
@@ -92,6 +94,27 @@ try {
   const common = a.filter((n) => b.includes(n));
   check(common.length > 100 && Math.abs(a.at(-1) - b.at(-1)) <= 30,
         `two tabs show the same frames (${common.length} frame numbers in common; now ${a.at(-1)} and ${b.at(-1)})`);
+  // The force heat map: a second socket, at the FORCES level, colours the surface.
+  await first.check('#heat');
+  await waitFor(first, () => window.kerf.forceFrames > 10 && window.kerf.largestForce > 0,
+                'the heat map gets the nodal forces');
+  check(await first.evaluate(() => window.kerf.largestForce > 0), 'the heat map has forces to show');
+  await first.screenshot({ path: 'test/screenshots/heat-map.png' });
+  await first.uncheck('#heat');
+  // The server restarts (its sessions come back from the journal): both tabs reconnect.
+  kerfServer.child.kill('SIGTERM');
+  await new Promise((resolve) => kerfServer.child.on('exit', resolve));
+  kerfServer = start(server, [`--listen=${grpc}`, `--http_listen=${web}`,
+                              `--journal_dir=${journal}`, '--web_root=dist']);
+  await kerfServer.line(/^kerf-server listening on /);
+  for (const page of pages) {
+    await waitFor(page, () => window.kerf.reconnects > 0 && window.kerf.connected &&
+                              window.kerf.triangles > 0, 'the tab reconnects after a restart');
+  }
+  const restored = await sessionInfo(base, session);
+  const redrawn = await Promise.all(pages.map((p) => p.evaluate(() => window.kerf.triangles)));
+  check(redrawn.every((n) => n === Number(restored?.surface_triangles)),
+        `after the restart both tabs draw the restored surface (${redrawn}; the server has ${restored?.surface_triangles})`);
   const stats = await first.evaluate(() => window.kerf);
   check(stats.fps > 30 && stats.gaps <= stats.frames / 20,
         `live at ${stats.fps.toFixed(1)} frames/s, ${stats.gaps} gaps in ${stats.frames} frames`);
@@ -100,6 +123,7 @@ try {
 } finally {
   await browser.close();
   kerfServer.child.kill('SIGTERM');
+  rmSync(journal, { recursive: true, force: true });
 }
 console.log(failures === 0 ? 'viewer_test: all passed' : `viewer_test: ${failures} failed`);
 process.exit(failures === 0 ? 0 : 1);
