@@ -5,13 +5,13 @@
 #include <atomic>
 #include <cmath>
 #include <deque>
-#include <map>
 #include <optional>
 #include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/clock.h"
+#include "common/pose_log.h"
 
 namespace kerf::client {
 namespace {
@@ -101,8 +101,7 @@ HapticRecord RunHaptic(kerf::v1::Simulator::Stub& stub, HapticDevice& device,
   std::atomic<bool> stop_loop{false};
   std::thread loop([&] { ForceLoop(device, options, start, stop_loop, exchange, record); });
 
-  absl::Mutex sent_mutex;
-  std::map<double, std::pair<Eigen::Vector3d, double>> sent;  // pose time -> tip, when sent
+  PoseLog sent;
   std::vector<double> frame_times, latencies;
   std::uint64_t missed = 0;
   bool finished = false;
@@ -126,24 +125,14 @@ HapticRecord RunHaptic(kerf::v1::Simulator::Stub& stub, HapticDevice& device,
         if (last != 0 && frame.sequence() > last + 1) missed += frame.sequence() - last - 1;
         last = frame.sequence();
         frame_times.push_back(now);
-        Eigen::Vector3d tip;
-        {
-          absl::MutexLock lock(&sent_mutex);
-          // blade_time went through the session's clock and back: equal to within rounding.
-          const auto it = sent.lower_bound(frame.blade_time() - 1e-9);
-          if (it == sent.end() || std::abs(it->first - frame.blade_time()) > 1e-9) {
-            continue;  // no pose applied yet, or one not sent by this run
-          }
-          tip = it->second.first;
-          if (it->second.second >= 0) {
-            latencies.push_back(now - it->second.second);
-            it->second.second = -1;  // the first frame that shows the pose
-          }
-          sent.erase(sent.begin(), it);  // older poses will not be answered again
-        }
+        const auto answer = sent.Answered(frame.blade_time(),
+                                          absl::Now() + absl::Seconds(options.frame_delay_seconds));
+        if (!answer) continue;  // no pose applied yet, or one not sent by this run
+        if (answer->latency) latencies.push_back(absl::ToDoubleSeconds(*answer->latency));
         const auto& f = frame.tool_force();
         absl::MutexLock lock(&exchange.mutex);
-        exchange.arrivals.push_back({now, tip, {f.x(), f.y(), f.z()}});
+        exchange.arrivals.push_back(
+            {now, Eigen::Vector3d(answer->tip.data()), {f.x(), f.y(), f.z()}});
       }
     });
     bool wrote = stream->Write(start_request);
@@ -161,11 +150,9 @@ HapticRecord RunHaptic(kerf::v1::Simulator::Stub& stub, HapticDevice& device,
         done = exchange.device_done;
       }
       if (latest && latest->first > last_sent) {
-        {
-          absl::MutexLock lock(&sent_mutex);
-          sent[latest->first] = {latest->second.tip, clock()};
-        }
-        wrote = stream->Write(PoseRequest(latest->first, latest->second));
+        const kerf::v1::CutRequest request = PoseRequest(latest->first, latest->second);
+        sent.Sent(request.pose(), absl::Now());
+        wrote = stream->Write(request);
         last_sent = latest->first;
       }
       if (done) break;

@@ -11,6 +11,7 @@
 #include "absl/time/clock.h"
 #include "common/channel.h"
 #include "common/latency_summary.h"
+#include "common/pose_log.h"
 #include "common/session_calls.h"
 #include "kerf/v1/simulator.grpc.pb.h"
 
@@ -95,28 +96,18 @@ bool CutOnce(kerf::v1::Simulator::Stub& stub, const kerf::v1::CreateSessionRespo
   start.mutable_start()->set_level(kerf::v1::FORCES);
   start.mutable_start()->set_frame_rate_hz(scenario.cutter_frame_rate_hz());
   if (!stream->Write(start)) return false;
-  std::vector<absl::Time> sent(path.poses_size(), absl::InfinitePast());
-  absl::Mutex sent_mutex;
+  PoseLog sent;  // this pass's: a frame still showing the last pass's pose answers none
   std::atomic<bool> got_frame{false};
   std::thread reader([&] {
     kerf::v1::Frame frame;
-    int seen = -1;
     while (stream->Read(&frame)) {
       got_frame = true;
-      const absl::Time now = absl::Now();
+      const auto answer = sent.Answered(frame.blade_time(), absl::Now());
       ++progress->frames;
       absl::MutexLock lock(&tally.mutex);
       ++tally.cutter_frames;
-      // The first frame that shows a pose (by its time; blade_time is the pose's own time).
-      for (int k = seen + 1; k < path.poses_size() && frame.blade_time() != 0; ++k) {
-        if (path.poses(k).time() > frame.blade_time() + 1e-9) break;
-        if (std::abs(path.poses(k).time() - frame.blade_time()) <= 1e-9) {
-          // Not sent yet in this pass: the frame still shows the last pass's pose.
-          absl::MutexLock sent_lock(&sent_mutex);
-          if (sent[k] == absl::InfinitePast()) break;
-          tally.latencies_ms.push_back(absl::ToDoubleMilliseconds(now - sent[k]));
-          seen = k;
-        }
+      if (answer && answer->latency) {
+        tally.latencies_ms.push_back(absl::ToDoubleMilliseconds(*answer->latency));
       }
     }
   });
@@ -137,10 +128,7 @@ bool CutOnce(kerf::v1::Simulator::Stub& stub, const kerf::v1::CreateSessionRespo
     }
     kerf::v1::CutRequest request;
     *request.mutable_pose() = path.poses(k);
-    {
-      absl::MutexLock lock(&sent_mutex);
-      sent[k] = absl::Now();
-    }
+    sent.Sent(request.pose(), absl::Now());
     if (!stream->Write(request)) break;
     ++progress->poses_sent;
   }

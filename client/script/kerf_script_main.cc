@@ -19,6 +19,7 @@
 #include "common/blade_path_file.h"
 #include "common/channel.h"
 #include "common/latency_summary.h"
+#include "common/pose_log.h"
 #include "common/session_calls.h"
 #include "kerf/v1/simulator.grpc.pb.h"
 
@@ -97,28 +98,21 @@ int main(int argc, char** argv) {
   start.mutable_start()->set_level(kerf::v1::FORCES);
   start.mutable_start()->set_token(created.cutter_token());
   cut->Write(start);
-  std::vector<absl::Time> sent(path.poses_size());
+  kerf::client::PoseLog sent;
   std::vector<double> latencies_ms;
   std::size_t cutter_frames = 0;
   double largest_force = 0;
   std::thread reading([&] {
     kerf::v1::Frame frame;
-    int seen = -1;
     while (cut->Read(&frame)) {
-      const absl::Time now = absl::Now();
+      const auto answer = sent.Answered(frame.blade_time(), absl::Now());
       absl::MutexLock lock(&mutex);
       ++cutter_frames;
       const auto& f = frame.tool_force();
       largest_force =
           std::max(largest_force, std::sqrt(f.x() * f.x() + f.y() * f.y() + f.z() * f.z()));
-      // The pose the frame reports (by its time) and the first frame that shows it.
-      for (int k = seen + 1; k < path.poses_size(); ++k) {
-        // blade_time went through the session's clock and back: equal to within rounding.
-        if (frame.blade_time() == 0 || path.poses(k).time() > frame.blade_time() + 1e-9) break;
-        if (std::abs(path.poses(k).time() - frame.blade_time()) <= 1e-9) {
-          latencies_ms.push_back(absl::ToDoubleMilliseconds(now - sent[k]));
-          seen = k;
-        }
+      if (answer && answer->latency) {
+        latencies_ms.push_back(absl::ToDoubleMilliseconds(*answer->latency));
       }
     }
   });
@@ -128,10 +122,7 @@ int main(int argc, char** argv) {
     absl::SleepFor(begin + absl::Seconds(path.poses(k).time() - t0) - absl::Now());
     kerf::v1::CutRequest request;
     *request.mutable_pose() = path.poses(k);
-    {
-      absl::MutexLock lock(&mutex);
-      sent[k] = absl::Now();
-    }
+    sent.Sent(request.pose(), absl::Now());
     if (!cut->Write(request)) break;
   }
   cut->WritesDone();

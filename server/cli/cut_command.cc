@@ -130,17 +130,14 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   if (!report.ok()) return report.status();
 
   mesh::VtuExtraArrays extra;
-  std::vector<double> rest_positions;
   std::vector<std::int64_t> source_vertex;
   for (const mesh::VertexId v : m->vertices()) {
-    const Eigen::Vector3d& p = m->rest_position(v);
-    rest_positions.insert(rest_positions.end(), {p.x(), p.y(), p.z()});
     source_vertex.push_back(mesh::Index(v) < original_vertices ? mesh::Index(v) : -1);
   }
   std::vector<std::int64_t> source_tet;
   for (const mesh::TetId t : m->tets())
     source_tet.push_back(mesh::Index(source_tets[mesh::Index(t)]));
-  extra.point_data.push_back({"rest_position", 3, std::move(rest_positions)});
+  extra.point_data.push_back(mesh::RestPositionArray(*m));
   extra.point_data.push_back({"source_vertex", 1, std::move(source_vertex)});
   extra.cell_data.push_back({"source_tet", 1, std::move(source_tet)});
   if (absl::Status s = mesh::WriteTextFile((**out_arg)[0], mesh::FormatVtu(*m, extra)); !s.ok()) {

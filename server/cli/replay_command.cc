@@ -57,17 +57,6 @@ absl::StatusOr<std::vector<PendingExport>> ParseExportTimes(absl::string_view li
   return exports;
 }
 
-mesh::VtuExtraArrays RestPositions(const mesh::TetMesh& m) {
-  std::vector<double> rest;
-  for (const mesh::VertexId v : m.vertices()) {
-    const Eigen::Vector3d& p = m.rest_position(v);
-    rest.insert(rest.end(), {p.x(), p.y(), p.z()});
-  }
-  mesh::VtuExtraArrays extra;
-  extra.point_data.push_back({"rest_position", 3, std::move(rest)});
-  return extra;
-}
-
 // What the physics thread records as the replay goes (read after `finished`).
 struct Progress {
   std::vector<PendingExport> pending;
@@ -90,7 +79,8 @@ void AfterTick(Progress& p, std::uint64_t tick, double time, const sim::Simulati
     out.set_path(absl::StrFormat("%s-t%.3f.vtu", p.prefix, e.time));
     out.set_model_sha256(absl::BytesToHexString(service::ModelSha256(simulation)));
     const absl::Status written = mesh::WriteTextFile(
-        out.path(), mesh::FormatVtu(simulation.mesh(), RestPositions(simulation.mesh())));
+        out.path(),
+        mesh::FormatVtu(simulation.mesh(), {{mesh::RestPositionArray(simulation.mesh())}, {}}));
     if (!written.ok() && p.error.ok()) p.error = written;
   }
   const bool exported = std::all_of(p.pending.begin(), p.pending.end(),

@@ -50,6 +50,14 @@ absl::StatusOr<BladePose> FromProto(const kerf::v1::BladePose& pose) {
                    {pose.heel(0), pose.heel(1), pose.heel(2)}};
 }
 
+kerf::v1::BladePose ToProto(const BladePose& pose) {
+  kerf::v1::BladePose message;
+  message.set_time(pose.time);
+  for (int k = 0; k < 3; ++k) message.add_tip(pose.tip[k]);
+  for (int k = 0; k < 3; ++k) message.add_heel(pose.heel[k]);
+  return message;
+}
+
 absl::StatusOr<std::vector<BladePose>> ParseBladePathJson(absl::string_view json,
                                                           absl::string_view source,
                                                           const BladeLimits& limits) {

@@ -34,6 +34,8 @@ absl::Status ValidatePose(const BladePose& pose, const BladePose* previous,
 
 // From the message; INVALID_ARGUMENT if tip or heel is not three numbers.
 absl::StatusOr<BladePose> FromProto(const kerf::v1::BladePose& pose);
+// The message of a pose (FromProto's inverse, exactly).
+kerf::v1::BladePose ToProto(const BladePose& pose);
 
 // A whole path from its JSON form, every pose validated against the one before.
 // INVALID_ARGUMENT "source: ..." naming the pose for a bad one.

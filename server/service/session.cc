@@ -19,14 +19,6 @@ constexpr int kMaxStepsPerTick = 200;
 
 constexpr std::size_t kMaxWaitingSnapshots = 64;
 
-kerf::v1::BladePose ToProto(const cut::BladePose& pose) {
-  kerf::v1::BladePose message;
-  message.set_time(pose.time);
-  for (int k = 0; k < 3; ++k) message.add_tip(pose.tip[k]);
-  for (int k = 0; k < 3; ++k) message.add_heel(pose.heel[k]);
-  return message;
-}
-
 cut::BladePose Interpolate(const cut::BladePose& a, const cut::BladePose& b, double time) {
   const double s = (time - a.time) / (b.time - a.time);
   return {time, a.tip + s * (b.tip - a.tip), a.heel + s * (b.heel - a.heel)};
@@ -93,7 +85,7 @@ absl::StatusOr<std::unique_ptr<Session>> Session::Create(SessionSetup setup,
   return session;
 }
 
-Session::~Session() { Close(absl::CancelledError(absl::StrCat("session ", id_, " closed"))); }
+Session::~Session() { Close(Closed()); }
 
 void Session::StopThread() {
   {
@@ -128,7 +120,7 @@ void Session::Close(const absl::Status& why, bool for_good) {
     snapshots.swap(snapshots_);
   }
   for (SnapshotRequest& request : snapshots) {
-    request.done(absl::CancelledError(absl::StrCat("session ", id_, " closed")));
+    request.done(Closed());
   }
   std::uint64_t sent = 0;
   for (const auto& subscription : ending) {
@@ -140,22 +132,27 @@ void Session::Close(const absl::Status& why, bool for_good) {
   frames_sent_to_departed_ += sent;
 }
 
-bool Session::Offers(kerf::v1::Level level) const {
-  return std::find(levels_.begin(), levels_.end(), level) != levels_.end();
+absl::Status Session::CheckOffered(kerf::v1::Level level) const {
+  if (level == kerf::v1::LEVEL_UNSPECIFIED || !kerf::v1::Level_IsValid(level)) {
+    return absl::InvalidArgumentError("level must be SURFACE, VOLUME or FORCES");
+  }
+  if (std::find(levels_.begin(), levels_.end(), level) == levels_.end()) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("scene ", scene_name_, " does not offer ", kerf::v1::Level_Name(level)));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status Session::Closed() const {
+  return absl::CancelledError(absl::StrCat("session ", id_, " closed"));
 }
 
 absl::StatusOr<std::shared_ptr<Subscription>> Session::Observe(
     kerf::v1::Level level, std::function<void(const SerializedFrame&)> start_write,
     std::function<void(const absl::Status&)> on_end) {
-  if (level == kerf::v1::LEVEL_UNSPECIFIED || !kerf::v1::Level_IsValid(level)) {
-    return absl::InvalidArgumentError("level must be SURFACE, VOLUME or FORCES");
-  }
-  if (!Offers(level)) {
-    return absl::FailedPreconditionError(
-        absl::StrCat("scene ", scene_name_, " does not offer ", kerf::v1::Level_Name(level)));
-  }
+  if (absl::Status s = CheckOffered(level); !s.ok()) return s;
   absl::MutexLock lock(&mutex_);
-  if (stopping_) return absl::CancelledError(absl::StrCat("session ", id_, " closed"));
+  if (stopping_) return Closed();
   std::size_t observers = 0;
   for (const auto& view : observer_views_) observers += view->subscribers.size();
   if (observers >= options_.max_subscribers) {
@@ -174,20 +171,14 @@ absl::StatusOr<std::shared_ptr<Subscription>> Session::BeginCut(
     std::function<void(const SerializedFrame&)> start_write,
     std::function<void(const absl::Status&)> on_end) {
   if (level == kerf::v1::LEVEL_UNSPECIFIED) level = kerf::v1::FORCES;
-  if (!kerf::v1::Level_IsValid(level)) {
-    return absl::InvalidArgumentError("level must be SURFACE, VOLUME or FORCES");
-  }
-  if (!Offers(level)) {
-    return absl::FailedPreconditionError(
-        absl::StrCat("scene ", scene_name_, " does not offer ", kerf::v1::Level_Name(level)));
-  }
+  if (absl::Status s = CheckOffered(level); !s.ok()) return s;
   if (!(frame_rate_hz >= 0 && frame_rate_hz <= options_.physics_rate_hz)) {
     return absl::InvalidArgumentError(
         absl::StrCat("frame_rate_hz must be between 0 (every tick) and the physics rate (",
                      options_.physics_rate_hz, " Hz), got ", frame_rate_hz));
   }
   absl::MutexLock lock(&mutex_);
-  if (stopping_) return absl::CancelledError(absl::StrCat("session ", id_, " closed"));
+  if (stopping_) return Closed();
   if (cutter_view_ != nullptr) {
     return absl::FailedPreconditionError(
         absl::StrCat("session ", id_, " already has a cutter; one at a time"));
@@ -269,15 +260,9 @@ void Session::Unsubscribe(const std::shared_ptr<Subscription>& subscription) {
 
 void Session::Snapshot(kerf::v1::Level level, std::uint64_t sequence,
                        std::function<void(absl::StatusOr<kerf::v1::Frame>)> done) {
-  if (level == kerf::v1::LEVEL_UNSPECIFIED || !kerf::v1::Level_IsValid(level)) {
-    return done(absl::InvalidArgumentError("level must be SURFACE, VOLUME or FORCES"));
-  }
-  if (!Offers(level)) {
-    return done(absl::FailedPreconditionError(
-        absl::StrCat("scene ", scene_name_, " does not offer ", kerf::v1::Level_Name(level))));
-  }
+  if (absl::Status s = CheckOffered(level); !s.ok()) return done(s);
   absl::MutexLock lock(&mutex_);
-  if (stopping_) return done(absl::CancelledError(absl::StrCat("session ", id_, " closed")));
+  if (stopping_) return done(Closed());
   const View& view = *observer_views_[level];
   const std::uint64_t made = view.FramesBy(ticks_);
   const std::uint64_t limit = made + static_cast<std::uint64_t>(60 * options_.frame_rate_hz);
@@ -303,7 +288,14 @@ kerf::v1::SessionInfo Session::Info() const {
   absl::MutexLock lock(&mutex_);
   info.set_simulation_time(simulation_time_);
   info.set_tets(simulation_->mesh().tet_count());
-  info.set_surface_triangles(mesh::ExtractBoundarySurface(simulation_->mesh()).size());
+  // Extracting the boundary is O(mesh) with the physics waiting on the lock: counted again only
+  // after the topology changed.
+  const mesh::ChangeMark mark = simulation_->mesh().change_log().Mark();
+  if (!surface_triangles_ || mark != surface_counted_at_) {
+    surface_triangles_ = mesh::ExtractBoundarySurface(simulation_->mesh()).size();
+    surface_counted_at_ = mark;
+  }
+  info.set_surface_triangles(*surface_triangles_);
   info.set_vertices(simulation_->mesh().vertex_count());
   std::size_t observers = 0;
   std::uint64_t frames_sent = frames_sent_to_departed_;
@@ -374,7 +366,7 @@ void Session::ApplyDuePoses(std::uint64_t tick, double until) {
     if (journal_ == nullptr || poses_applied_ == applied) return;
     kerf::v1::JournalRecord record;
     record.mutable_pose()->set_tick(tick);
-    *record.mutable_pose()->mutable_pose() = ToProto(pose);
+    *record.mutable_pose()->mutable_pose() = cut::ToProto(pose);
     record.mutable_pose()->set_blade_time(blade_time);
     unwritten_.push_back(std::move(record));
   };

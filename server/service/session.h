@@ -158,7 +158,10 @@ class Session {
   // Answers the snapshot requests of `view`'s level due at this tick's frame `sequence`.
   void TakeSnapshots(const View& view, std::uint64_t sequence, const TickReport& report)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
-  bool Offers(kerf::v1::Level level) const;
+  // INVALID_ARGUMENT for no or an unknown level, FAILED_PRECONDITION for one the scene does not
+  // offer.
+  absl::Status CheckOffered(kerf::v1::Level level) const;
+  absl::Status Closed() const;  // CANCELLED "session ID closed"
   void StopThread();
 
   const std::string id_;
@@ -177,6 +180,9 @@ class Session {
   std::uint64_t poses_applied_ ABSL_GUARDED_BY(mutex_) = 0;
   std::uint64_t poses_received_ ABSL_GUARDED_BY(mutex_) = 0;
   std::uint64_t frames_sent_to_departed_ ABSL_GUARDED_BY(mutex_) = 0;  // observers gone
+  // Info's count of boundary triangles, and the topology it was counted on.
+  mutable std::optional<std::size_t> surface_triangles_ ABSL_GUARDED_BY(mutex_);
+  mutable mesh::ChangeMark surface_counted_at_ ABSL_GUARDED_BY(mutex_);
   double last_tick_seconds_ ABSL_GUARDED_BY(mutex_) = 0;
   std::vector<std::unique_ptr<View>> observer_views_ ABSL_GUARDED_BY(mutex_);  // by level
   std::unique_ptr<View> cutter_view_ ABSL_GUARDED_BY(mutex_);

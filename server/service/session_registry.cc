@@ -58,24 +58,24 @@ std::string JournalPath(const std::string& dir, const std::string& id) {
 
 }  // namespace
 
+absl::Status SessionRegistry::CheckRoom() const {
+  if (sessions_.size() < options_.max_sessions) return absl::OkStatus();
+  return absl::ResourceExhaustedError(absl::StrCat(
+      "the server holds its limit of ", options_.max_sessions, " sessions; close one first"));
+}
+
 absl::Status SessionRegistry::Add(std::shared_ptr<Session> session) {
   absl::MutexLock lock(&mutex_);
-  if (sessions_.size() >= options_.max_sessions) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        "the server holds its limit of ", options_.max_sessions, " sessions; close one first"));
-  }
+  if (absl::Status s = CheckRoom(); !s.ok()) return s;
   sessions_[session->id()] = std::move(session);
   return absl::OkStatus();
 }
 
 absl::StatusOr<CreatedSession> SessionRegistry::Create(
     const kerf::v1::CreateSessionRequest& request) {
-  {
+  {  // checked before anything is built, and again when it is added
     absl::MutexLock lock(&mutex_);
-    if (sessions_.size() >= options_.max_sessions) {
-      return absl::ResourceExhaustedError(absl::StrCat(
-          "the server holds its limit of ", options_.max_sessions, " sessions; close one first"));
-    }
+    if (absl::Status s = CheckRoom(); !s.ok()) return s;
   }
   absl::StatusOr<kerf::v1::Scene> spec = SpecOf(request, options_);
   if (!spec.ok()) return spec.status();
@@ -155,6 +155,11 @@ RestoreOutcome SessionRegistry::RestoreOne(const std::string& path) {
   outcome.warning = recorded->warning;
   outcome.ticks = recorded->last_tick;
   if (recorded->ended) return outcome;  // closed by a client: kept for replay only
+  {                                     // before the replay, not after it
+    absl::MutexLock lock(&mutex_);
+    outcome.status = CheckRoom();
+    if (!outcome.status.ok()) return outcome;
+  }
   const kerf::v1::JournalStart& start = recorded->start;
   if (start.session_id() + ".journal" != std::filesystem::path(path).filename().string()) {
     outcome.status = absl::InvalidArgumentError(absl::StrCat(
@@ -200,6 +205,7 @@ RestoreOutcome SessionRegistry::RestoreOne(const std::string& path) {
   outcome.restored = true;
   return outcome;
 }
+
 absl::StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) const {
   absl::MutexLock lock(&mutex_);
   const auto it = sessions_.find(id);

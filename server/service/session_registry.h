@@ -69,6 +69,8 @@ class SessionRegistry {
 
  private:
   RestoreOutcome RestoreOne(const std::string& path);
+  // RESOURCE_EXHAUSTED at the session limit.
+  absl::Status CheckRoom() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   // Adds `session` unless the limit is reached meanwhile.
   absl::Status Add(std::shared_ptr<Session> session);
 

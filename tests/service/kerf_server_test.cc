@@ -101,9 +101,7 @@ void CutStraightThrough(kerf::v1::Simulator::Stub& stub, const std::string& sess
   ASSERT_TRUE(stream->Write(start));
   for (const cut::BladePose& pose : *path) {  // 0.25 s of poses: within the allowed lead
     kerf::v1::CutRequest request;
-    request.mutable_pose()->set_time(pose.time);
-    for (int k = 0; k < 3; ++k) request.mutable_pose()->add_tip(pose.tip[k]);
-    for (int k = 0; k < 3; ++k) request.mutable_pose()->add_heel(pose.heel[k]);
+    *request.mutable_pose() = cut::ToProto(pose);
     ASSERT_TRUE(stream->Write(request));
   }
   stream->WritesDone();

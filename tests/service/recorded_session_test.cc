@@ -102,8 +102,7 @@ TEST(RecordedSession, ABrokenRecordIsCutOffWithAWarning) {
     EXPECT_EQ(session->last_tick, 7u);
     EXPECT_EQ(session->good_bytes, 200u);  // the end of the last record kept
     EXPECT_NE(session->warning.find(c.why), std::string::npos) << session->warning;
-    EXPECT_NE(session->warning.find("record 2 is unusable"), std::string::npos)
-        << session->warning;
+    EXPECT_NE(session->warning.find("record 2 is unusable"), std::string::npos) << session->warning;
   }
   const absl::StatusOr<RecordedSession> after_end =
       RecordedSessionOf(Contents({Start(), End(7), Pose(9)}), "j");

@@ -289,6 +289,29 @@ grpc::Status DrainAndFinish(Stream& stream) {
   return stream.Finish();
 }
 
+// The first message of a cut stream.
+kerf::v1::CutRequest CutStart(const std::string& session, const std::string& token) {
+  kerf::v1::CutRequest start;
+  start.mutable_start()->set_session_id(session);
+  start.mutable_start()->set_token(token);
+  return start;
+}
+
+// A cut stream that sends its start, then `poses` at once, then ends: its status.
+grpc::Status CutWith(kerf::v1::Simulator::Stub& stub, const std::string& session,
+                     const std::string& token, const std::vector<kerf::v1::BladePose>& poses) {
+  grpc::ClientContext context;
+  auto stream = stub.Cut(&context);
+  stream->Write(CutStart(session, token));
+  for (const kerf::v1::BladePose& pose : poses) {
+    kerf::v1::CutRequest request;
+    *request.mutable_pose() = pose;
+    stream->Write(request);
+  }
+  stream->WritesDone();
+  return DrainAndFinish(*stream);
+}
+
 kerf::v1::BladePose Pose(double time, double y) {
   kerf::v1::BladePose pose;
   pose.set_time(time);
@@ -305,9 +328,7 @@ grpc::Status CutAcross(kerf::v1::Simulator::Stub& stub, const std::string& sessi
                        double* largest_force = nullptr, std::uint64_t* poses_applied = nullptr) {
   grpc::ClientContext context;
   auto stream = stub.Cut(&context);
-  kerf::v1::CutRequest start;
-  start.mutable_start()->set_session_id(session);
-  start.mutable_start()->set_token(TokensOf(session).cutter);
+  kerf::v1::CutRequest start = CutStart(session, TokensOf(session).cutter);
   start.mutable_start()->set_level(kerf::v1::FORCES);
   start.mutable_start()->set_frame_rate_hz(100);
   stream->Write(start);
@@ -434,14 +455,7 @@ TEST(SimulatorService, TokensGrantTheirRolesOnly) {
   EXPECT_TRUE(observe_with(tokens.observer).ok());
   EXPECT_TRUE(observe_with(tokens.cutter).ok());
   {  // the observer token cannot cut
-    grpc::ClientContext context;
-    auto stream = server.stub().Cut(&context);
-    kerf::v1::CutRequest start;
-    start.mutable_start()->set_session_id(info.session_id());
-    start.mutable_start()->set_token(tokens.observer);
-    stream->Write(start);
-    stream->WritesDone();
-    const grpc::Status status = DrainAndFinish(*stream);
+    const grpc::Status status = CutWith(server.stub(), info.session_id(), tokens.observer, {});
     EXPECT_EQ(status.error_code(), grpc::StatusCode::PERMISSION_DENIED);
     EXPECT_EQ(status.error_message(), "the observer token cannot cut or close");
   }
@@ -569,33 +583,15 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
     EXPECT_EQ(status.error_message(),
               "scene.mesh.lattice: 6000000000 tets is over this server's limit of 2000000");
   }
+  const std::string& cutter = TokensOf(info.session_id()).cutter;
   {  // a NaN pose ends the cut stream with INVALID_ARGUMENT
-    grpc::ClientContext context;
-    auto stream = server.stub().Cut(&context);
-    kerf::v1::CutRequest start;
-    start.mutable_start()->set_session_id(info.session_id());
-    start.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
-    stream->Write(start);
-    kerf::v1::CutRequest bad;
-    *bad.mutable_pose() = Pose(0, std::nan(""));
-    stream->Write(bad);
-    stream->WritesDone();
-    const grpc::Status status = DrainAndFinish(*stream);
+    const grpc::Status status =
+        CutWith(server.stub(), info.session_id(), cutter, {Pose(0, std::nan(""))});
     EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   }
   {  // a blade that teleports 5 cm between poses 10 ms apart
-    grpc::ClientContext context;
-    auto stream = server.stub().Cut(&context);
-    kerf::v1::CutRequest request;
-    request.mutable_start()->set_session_id(info.session_id());
-    request.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
-    stream->Write(request);
-    *request.mutable_pose() = Pose(0, -0.005);
-    stream->Write(request);
-    *request.mutable_pose() = Pose(0.01, 0.045);
-    stream->Write(request);
-    stream->WritesDone();
-    const grpc::Status status = DrainAndFinish(*stream);
+    const grpc::Status status =
+        CutWith(server.stub(), info.session_id(), cutter, {Pose(0, -0.005), Pose(0.01, 0.045)});
     EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
     EXPECT_NE(status.error_message().find("jumps"), std::string::npos) << status.error_message();
   }
@@ -608,18 +604,10 @@ TEST(SimulatorService, BadInputGetsAClearErrorAndTheSessionGoesOn) {
 TEST(SimulatorService, PosesFarAheadOfTheSessionAreRefused) {
   Server server;
   const kerf::v1::SessionInfo info = server.CreateBarSession();
-  grpc::ClientContext context;
-  auto stream = server.stub().Cut(&context);
-  kerf::v1::CutRequest request;
-  request.mutable_start()->set_session_id(info.session_id());
-  request.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
-  stream->Write(request);
-  *request.mutable_pose() = Pose(0, -0.005);
-  stream->Write(request);
-  *request.mutable_pose() = Pose(5, -0.004);  // 5 s later on the client's clock, at once
-  stream->Write(request);
-  stream->WritesDone();
-  const grpc::Status status = DrainAndFinish(*stream);
+  // The second pose is 5 s later on the client's clock, sent at once.
+  const grpc::Status status =
+      CutWith(server.stub(), info.session_id(), TokensOf(info.session_id()).cutter,
+              {Pose(0, -0.005), Pose(5, -0.004)});
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_NE(status.error_message().find("send poses in real time"), std::string::npos)
       << status.error_message();
@@ -693,10 +681,7 @@ TEST(SimulatorService, ACutterThatDisconnectsMidCutLeavesAWorkingSession) {
   {
     grpc::ClientContext context;
     auto stream = server.stub().Cut(&context);
-    kerf::v1::CutRequest start;
-    start.mutable_start()->set_session_id(info.session_id());
-    start.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
-    stream->Write(start);
+    stream->Write(CutStart(info.session_id(), TokensOf(info.session_id()).cutter));
     for (int k = 0; k <= 8; ++k) {  // the blade stops inside the bar
       kerf::v1::CutRequest request;
       *request.mutable_pose() = Pose(0.01 * k, -0.005 + 0.002 * k);
@@ -727,9 +712,8 @@ TEST(SimulatorService, OneCutterAtATime) {
   const kerf::v1::SessionInfo info = server.CreateBarSession();
   grpc::ClientContext first_context;
   auto first = server.stub().Cut(&first_context);
-  kerf::v1::CutRequest start;
-  start.mutable_start()->set_session_id(info.session_id());
-  start.mutable_start()->set_token(TokensOf(info.session_id()).cutter);
+  const kerf::v1::CutRequest start =
+      CutStart(info.session_id(), TokensOf(info.session_id()).cutter);
   first->Write(start);
   Frame frame;
   ASSERT_TRUE(first->Read(&frame));  // the first cutter holds the blade

@@ -46,6 +46,16 @@ void AppendExtraArrays(std::string* out, const std::vector<VtuDataArray>& arrays
 
 }  // namespace
 
+VtuDataArray RestPositionArray(const TetMesh& mesh) {
+  std::vector<double> rest;
+  rest.reserve(3 * mesh.vertex_count());
+  for (const VertexId v : mesh.vertices()) {
+    const Eigen::Vector3d& p = mesh.rest_position(v);
+    rest.insert(rest.end(), {p.x(), p.y(), p.z()});
+  }
+  return {"rest_position", 3, std::move(rest)};
+}
+
 std::string FormatVtu(const TetMesh& mesh, const VtuExtraArrays& extra) {
   const TetMeshData data = ExtractTetMeshData(mesh, /*current=*/true);
   std::vector<double> coordinates;

@@ -25,6 +25,9 @@ struct VtuExtraArrays {
   std::vector<VtuDataArray> cell_data;
 };
 
+// The point array "rest_position": each live vertex's rest position.
+VtuDataArray RestPositionArray(const TetMesh& mesh);
+
 // The whole file's text. Array sizes must match the live counts times components (asserted).
 std::string FormatVtu(const TetMesh& mesh, const VtuExtraArrays& extra = {});
 
