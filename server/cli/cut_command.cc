@@ -1,14 +1,20 @@
 #include "cli/cut_command.h"
 
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <limits>
+#include <utility>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "cli/command_args.h"
 #include "cli/json_output.h"
 #include "cut/cutter.h"
+#include "cut/lag_meter.h"
 #include "geometry/tet_measures.h"
 #include "mesh/connected_components.h"
+#include "mesh/cut_surface.h"
 #include "mesh/io/mesh_file.h"
 #include "mesh/io/vtu_writer.h"
 #include "mesh/mesh_quality.h"
@@ -18,7 +24,9 @@
 namespace kerf::cli {
 namespace {
 
-constexpr absl::string_view kUsage = "kerf cut MESH --path PATH.json --out OUT.vtu [--json]";
+constexpr absl::string_view kUsage =
+    "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--trace OUT.jsonl] "
+    "[--dump-every-pose DIR] [--json]";
 
 // The mesh of a scene (an embedded name or a .textproto file) in its initial state, or of a
 // mesh file.
@@ -29,6 +37,28 @@ absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name) {
   absl::StatusOr<sim::Scene> scene = sim::LoadScene(name);
   if (!scene.ok()) return scene.status();
   return MeshOfScene(*std::move(scene));
+}
+
+double TotalRestVolume(const mesh::TetMesh& m) {
+  double volume = 0;
+  for (const mesh::TetId t : m.tets()) volume += mesh::RestVolume(m, t);
+  return volume;
+}
+
+// The VTU of a cut mesh with the arrays kerf cut writes.
+std::string CutMeshVtu(const mesh::TetMesh& m, const cut::Cutter& cutter,
+                       std::uint32_t original_vertices) {
+  mesh::VtuExtraArrays extra;
+  std::vector<std::int64_t> source_vertex;
+  for (const mesh::VertexId v : m.vertices()) {
+    source_vertex.push_back(mesh::Index(v) < original_vertices ? mesh::Index(v) : -1);
+  }
+  std::vector<std::int64_t> source_tet;
+  for (const mesh::TetId t : m.tets()) source_tet.push_back(mesh::Index(cutter.SourceTet(t)));
+  extra.point_data.push_back(mesh::RestPositionArray(m));
+  extra.point_data.push_back({"source_vertex", 1, std::move(source_vertex)});
+  extra.cell_data.push_back({"source_tet", 1, std::move(source_tet)});
+  return mesh::FormatVtu(m, extra);
 }
 
 }  // namespace
@@ -51,20 +81,106 @@ cut::BladeLimits LimitsForMeshSize(double diagonal) {
 absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
                                                  const std::vector<cut::BladePose>& poses,
                                                  absl::string_view path_name,
+                                                 const CutOptions& options,
                                                  std::vector<mesh::TetId>* source_tets) {
   kerf::v1::CutReport report;
   report.set_path(std::string(path_name));
   report.set_poses(static_cast<std::uint32_t>(poses.size()));
   report.set_tets_before(static_cast<std::uint32_t>(m->tet_count()));
-  absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(m, mesh::MeanEdgeLength(*m));
+  report.set_mode(options.mode == cut::CutMode::kProgressive ? "progressive" : "deferred");
+  absl::StatusOr<cut::Cutter> cutter =
+      cut::Cutter::Create(m, mesh::MeanEdgeLength(*m), {}, options.mode);
   if (!cutter.ok()) return cutter.status();
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    if (absl::Status s = cutter->ApplyPose(poses[i]); !s.ok()) {
-      return absl::InvalidArgumentError(absl::StrCat(path_name, ": pose ", i, ": ", s.message()));
+  std::FILE* trace = nullptr;
+  if (!options.trace_path.empty()) {
+    trace = std::fopen(options.trace_path.c_str(), "w");
+    if (trace == nullptr) {
+      return absl::NotFoundError(absl::StrCat("cannot write ", options.trace_path));
     }
   }
-  cutter->Finish();
+  if (!options.dump_directory.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(options.dump_directory, error);
+    if (error) {
+      return absl::NotFoundError(
+          absl::StrCat("cannot make ", options.dump_directory, ": ", error.message()));
+    }
+  }
+  const std::uint32_t original_vertices = m->vertex_index_bound();
+  const double volume = TotalRestVolume(*m);
+  const double surface = mesh::MeasureCutSurface(*m).surface_area;
+  cut::LagMeter lag_meter(*m);
+  double lag_sum = 0;
+  // Checks, measures, traces and dumps the mesh after pose `i` (poses.size(): withdrawn).
+  const auto after_pose = [&](std::size_t i) -> absl::Status {
+    const bool withdrawn = i == poses.size();
+    const mesh::CutSurface cut_surface = mesh::MeasureCutSurface(*m);
+    const bool valid = mesh::FindMeshDefects(*m).empty() &&
+                       std::abs(TotalRestVolume(*m) - volume) <= 1e-12 * volume &&
+                       std::abs(cut_surface.surface_area - surface) <= 1e-9 * surface;
+    if (!valid) report.set_invalid_poses(report.invalid_poses() + 1);
+    cut::PoseLag lag;
+    if (!withdrawn) {
+      lag = lag_meter.Measure(poses[i], *m);
+      lag_sum += lag.lag_area;
+      report.set_max_lag_area(std::max(report.max_lag_area(), lag.lag_area));
+      report.set_max_lag_distance(std::max(report.max_lag_distance(), lag.lag_distance));
+      report.set_max_lag_steps(
+          std::max(report.max_lag_steps(), static_cast<std::uint32_t>(lag.lag_steps)));
+      if (lag.lag_steps > 0) report.set_poses_lagging(report.poses_lagging() + 1);
+    }
+    if (trace != nullptr) {
+      const cut::PoseSummary& pose = cutter->last_pose();
+      std::string cases;
+      for (int k = 0; k <= cut::kProgressiveCases; ++k) {
+        if (withdrawn || pose.tets_by_case[k] == 0) continue;
+        absl::StrAppend(&cases, cases.empty() ? "" : ",", "\"", k, "\":", pose.tets_by_case[k]);
+      }
+      const std::string line = absl::StrCat(
+          "{\"pose\":", i, ",\"withdrawn\":", withdrawn ? "true" : "false", ",\"cases\":{", cases,
+          "},\"open_tets\":", withdrawn ? 0 : pose.open_tets,
+          ",\"temporary_tets\":", withdrawn ? 0 : pose.temporary_tets,
+          ",\"held\":", !withdrawn && pose.held ? "true" : "false", ",\"tets\":", m->tet_count(),
+          ",\"valid\":", valid ? "true" : "false", ",\"open_area\":", cut_surface.crack_area,
+          withdrawn ? ""
+                    : absl::StrCat(
+                          ",\"swept_area\":", lag.swept_area, ",\"lag_area\":", lag.lag_area,
+                          ",\"lag_distance\":", lag.lag_distance, ",\"lag_steps\":", lag.lag_steps),
+          "}\n");
+      std::fputs(line.c_str(), trace);
+    }
+    if (!options.dump_directory.empty()) {
+      char name[32];
+      std::snprintf(name, sizeof name, "pose-%04zu.vtu", i);
+      const std::filesystem::path file =
+          std::filesystem::path(options.dump_directory) / (withdrawn ? "withdrawn.vtu" : name);
+      return mesh::WriteTextFile(file.string(), CutMeshVtu(*m, *cutter, original_vertices));
+    }
+    return absl::OkStatus();
+  };
+  absl::Status status;
+  for (std::size_t i = 0; i < poses.size() && status.ok(); ++i) {
+    if (absl::Status s = cutter->ApplyPose(poses[i]); !s.ok()) {
+      status = absl::InvalidArgumentError(absl::StrCat(path_name, ": pose ", i, ": ", s.message()));
+      break;
+    }
+    status = after_pose(i);
+  }
+  if (status.ok()) {
+    cutter->Finish();
+    status = after_pose(poses.size());
+  }
+  if (trace != nullptr) std::fclose(trace);
+  if (!status.ok()) return status;
+  report.set_mean_lag_area(poses.empty() ? 0 : lag_sum / static_cast<double>(poses.size()));
   const cut::CutStatistics& s = cutter->statistics();
+  for (const std::size_t n : s.poses_by_case) {
+    report.add_poses_by_case(static_cast<std::uint32_t>(n));
+  }
+  report.set_rebuilt(static_cast<std::uint32_t>(s.rebuilt));
+  report.set_moved(static_cast<std::uint32_t>(s.moved));
+  report.set_held_poses(static_cast<std::uint32_t>(s.held_poses));
+  report.set_frozen_tets(static_cast<std::uint32_t>(s.frozen_tets));
   report.set_tets_after(static_cast<std::uint32_t>(m->tet_count()));
   report.set_cut_tets(static_cast<std::uint32_t>(s.cut_tets));
   report.set_new_tets(static_cast<std::uint32_t>(s.new_tets));
@@ -103,6 +219,22 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
 absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& args) {
   CommandArgs rest(args);
   const bool json = rest.TakeFlag("--json");
+  CutOptions options;
+  const bool progressive = rest.TakeFlag("--progressive");
+  if (rest.TakeFlag("--deferred")) {
+    if (progressive) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
+    }
+    options.mode = cut::CutMode::kDeferred;
+  }
+  for (auto [flag, into] :
+       {std::pair<absl::string_view, std::string*>{"--trace", &options.trace_path},
+        {"--dump-every-pose", &options.dump_directory}}) {
+    absl::StatusOr<std::optional<std::vector<absl::string_view>>> value = rest.TakeOption(flag, 1);
+    if (!value.ok()) return value.status();
+    if (value->has_value()) *into = std::string((**value)[0]);
+  }
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> path_arg =
       rest.TakeOption("--path", 1);
   if (!path_arg.ok()) return path_arg.status();
@@ -126,7 +258,8 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   if (!poses.ok()) return poses.status();
   const std::uint32_t original_vertices = m->vertex_index_bound();
   std::vector<mesh::TetId> source_tets;
-  absl::StatusOr<kerf::v1::CutReport> report = CutAlongPath(&*m, *poses, path_file, &source_tets);
+  absl::StatusOr<kerf::v1::CutReport> report =
+      CutAlongPath(&*m, *poses, path_file, options, &source_tets);
   if (!report.ok()) return report.status();
 
   mesh::VtuExtraArrays extra;
@@ -144,10 +277,11 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
     return s;
   }
   if (json) return FormatProtoJson(*report);
-  return absl::StrCat("cut ", report->cut_tets(), " of ", report->tets_before(), " tets into ",
-                      report->new_tets(), " (", report->new_per_cut(), " per cut tet); ",
-                      report->tets_after(), " tets, ", report->components(), " component(s), ",
-                      report->valid() ? "valid" : "INVALID", "; wrote ", (**out_arg)[0], "\n");
+  return absl::StrCat(report->mode(), ": cut ", report->cut_tets(), " of ", report->tets_before(),
+                      " tets into ", report->new_tets(), " (", report->new_per_cut(),
+                      " per cut tet); ", report->tets_after(), " tets, ", report->components(),
+                      " component(s), ", report->valid() ? "valid" : "INVALID", "; lag at most ",
+                      report->max_lag_steps(), " poses; wrote ", (**out_arg)[0], "\n");
 }
 
 }  // namespace kerf::cli

@@ -1,8 +1,9 @@
-// kerf cut MESH --path PATH.json --out OUT.vtu [--json]: applies a blade path to a mesh file
-// or a scene (its initial state: rest, or the static solution of a STATIC scene) and writes
-// the result. OUT.vtu has the current positions as points, the point arrays rest_position and
-// source_vertex (the original vertex id, -1 for a vertex the cut made) and the cell array
-// source_tet (the original tet each tet came from).
+// kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--trace OUT.jsonl]
+// [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a scene (its initial
+// state: rest, or the static solution of a STATIC scene) and writes the result. OUT.vtu has the
+// current positions as points, the point arrays rest_position and source_vertex (the original
+// vertex id, -1 for a vertex the cut made) and the cell array source_tet (the original tet each tet
+// came from).
 #pragma once
 
 #include <string>
@@ -11,6 +12,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "cut/blade.h"
+#include "cut/cutter.h"
 #include "kerf/v1/cut_report.pb.h"
 #include "mesh/tet_mesh.h"
 #include "sim/scene.h"
@@ -19,11 +21,23 @@ namespace kerf::cli {
 
 absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& args);
 
-// Cuts `mesh` along `poses` (then withdraws the blade) and reports what the cut did. The
-// blade limits scale with the mesh: at most twice its size long, a quarter of it per pose.
+struct CutOptions {
+  cut::CutMode mode = cut::CutMode::kProgressive;
+  // Non-empty: one JSON line per pose (and one after the blade is withdrawn): the Table 1
+  // cases of the tets the blade is in, tets alive, valid, and the lag (cut::LagMeter).
+  std::string trace_path;
+  // Non-empty: the mesh after every pose as DIR/pose-NNNN.vtu (arrays as OUT.vtu), and after
+  // the blade is withdrawn as DIR/withdrawn.vtu. The folder is made if needed.
+  std::string dump_directory;
+};
+
+// Cuts `mesh` along `poses` (then withdraws the blade), checking the mesh and measuring the
+// lag after every pose, and reports what the cut did. The blade limits scale with the mesh: at
+// most twice its size long, a quarter of it per pose.
 absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* mesh,
                                                  const std::vector<cut::BladePose>& poses,
                                                  absl::string_view path_name,
+                                                 const CutOptions& options = {},
                                                  std::vector<mesh::TetId>* source_tets = nullptr);
 
 // The blade limits for a mesh of this size (bounding-box diagonal, in its length unit).

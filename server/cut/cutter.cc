@@ -1,5 +1,6 @@
 #include "cut/cutter.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cassert>
 #include <numeric>
@@ -33,13 +34,63 @@ std::array<VertexId, 3> MakeFaceKey(VertexId a, VertexId b, VertexId c) {
   return key;
 }
 
+// The place of the temporary point inside tet t (the tip, or a point of its crack), beside
+// the face keys of temporary face points: no face repeats a vertex.
+std::array<VertexId, 3> InsidePlace(TetId t) {
+  const VertexId v = static_cast<VertexId>(Index(t));
+  return {v, v, v};
+}
+
+// Barycentric coordinates of p in the tet (a, b, c, d); NaN for a flat tet.
+Eigen::Vector4d TetBarycentric(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                               const Eigen::Vector3d& c, const Eigen::Vector3d& d,
+                               const Eigen::Vector3d& p) {
+  Eigen::Matrix3d m;
+  m << b - a, c - a, d - a;
+  const Eigen::Vector3d l = m.partialPivLu().solve(p - a);
+  return {1 - l.sum(), l[0], l[1], l[2]};
+}
+
+// A tip closer than this (barycentric) to a face of its tet is taken as on the face: the cone
+// from it would make slivers.
+constexpr double kTipMargin = 1e-3;
+
 }  // namespace
 
+int ProgressiveCase(int edges, int faces, int temporary_faces, bool tip_inside,
+                    bool edges_share_corner) {
+  struct Row {
+    int edges, faces, temporary_faces;
+    bool tip_inside;
+  };
+  static constexpr std::array<Row, kProgressiveCases> kTable = {{{0, 1, 1, true},
+                                                                 {0, 2, 2, false},
+                                                                 {1, 0, 2, false},
+                                                                 {1, 1, 1, true},
+                                                                 {1, 2, 2, false},
+                                                                 {2, 0, 2, false},
+                                                                 {2, 1, 1, true},
+                                                                 {2, 2, 2, false},
+                                                                 {2, 2, 2, false},
+                                                                 {3, 0, 2, false},
+                                                                 {3, 1, 1, true}}};
+  for (int k = 0; k < kProgressiveCases; ++k) {
+    const Row& row = kTable[k];
+    if (row.edges != edges || row.faces != faces || row.temporary_faces != temporary_faces ||
+        row.tip_inside != tip_inside) {
+      continue;
+    }
+    if (k == 7 && !edges_share_corner) continue;  // case 8: the cut edges share a corner
+    return k + 1;
+  }
+  return 0;
+}
+
 absl::StatusOr<Cutter> Cutter::Create(mesh::TetMesh* mesh, double cell_size,
-                                      const BladeLimits& limits) {
+                                      const BladeLimits& limits, CutMode mode) {
   absl::StatusOr<TetGrid> grid = TetGrid::Build(*mesh, cell_size, 0.25 * cell_size);
   if (!grid.ok()) return grid.status();
-  return Cutter(mesh, *std::move(grid), limits);
+  return Cutter(mesh, *std::move(grid), limits, mode);
 }
 
 absl::Status Cutter::ApplyPose(const BladePose& pose) {
@@ -49,15 +100,61 @@ absl::Status Cutter::ApplyPose(const BladePose& pose) {
   if (absl::Status s = grid_.RefreshTopology(); !s.ok()) return s;
   if (previous_) {
     const std::vector<TetId> near = RecordHits(*previous_, pose);
-    SplitReadyGroups(&pose, &near);
+    if (mode_ == CutMode::kDeferred) SplitReadyGroups(&pose, &near);
   }
+  if (mode_ == CutMode::kProgressive) UpdateOpenTets(&pose);
   previous_ = pose;
   return absl::OkStatus();
 }
 
 void Cutter::Finish() {
-  SplitReadyGroups(nullptr, nullptr);
+  if (mode_ == CutMode::kDeferred) {
+    SplitReadyGroups(nullptr, nullptr);
+  } else {
+    // The crack stays where the blade left it: its temporary face points become permanent.
+    for (const auto& [key, point] : temporary_points_) {
+      if (key[0] == key[1]) continue;  // the tip
+      face_hits_[key] = {point.weights.head<3>(), point.vertex};
+    }
+    for (auto it = temporary_points_.begin(); it != temporary_points_.end();) {
+      if (it->first[0] != it->first[1]) {
+        temporary_points_.erase(it++);
+      } else {
+        ++it;
+      }
+    }
+    UpdateOpenTets(nullptr);
+  }
   previous_.reset();
+}
+
+TetId Cutter::OwnerOf(TetId t) const {
+  const auto it = owner_.find(t);
+  return it == owner_.end() ? t : it->second;
+}
+
+bool Cutter::IsTemporaryVertex(VertexId v) const {
+  return std::any_of(temporary_points_.begin(), temporary_points_.end(),
+                     [&](const auto& entry) { return entry.second.vertex == v; });
+}
+
+std::vector<TetId> Cutter::TetsWith(std::span<const VertexId> vertices) const {
+  const mesh::TetMesh::TetList live =
+      vertices.size() == 2 ? mesh_->TetsAroundEdge(vertices[0], vertices[1])
+                           : mesh_->TetsAroundFace(vertices[0], vertices[1], vertices[2]);
+  std::vector<TetId> tets;
+  for (const TetId t : live) tets.push_back(OwnerOf(t));
+  // An open tet whose pieces split the edge or face has no piece with all of them.
+  for (const auto& [t, open] : open_) {
+    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
+    if (std::all_of(vertices.begin(), vertices.end(),
+                    [&](VertexId v) { return mesh::TetHasVertex(corners, v); })) {
+      tets.push_back(t);
+    }
+  }
+  std::sort(tets.begin(), tets.end());
+  tets.erase(std::unique(tets.begin(), tets.end()), tets.end());
+  return tets;
 }
 
 std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to) {
@@ -72,12 +169,20 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
   // The grid lists the tets in the cells the swept surface's box covers; keep those whose own
   // box meets it (the blade can only be inside those, too).
   std::vector<TetId> near = grid_.Candidates(low, high);
+  for (TetId& t : near) t = OwnerOf(t);
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
   std::erase_if(near, [&](TetId t) {
-    const mesh::Bounds box = mesh::MeasureTetBounds(*mesh_, t, /*current=*/true);
-    return (box.low.array() > high.array()).any() || (box.high.array() < low.array()).any();
+    const mesh::TetVertices& v = mesh_->tet_even_if_removed(t);
+    Eigen::Vector3d box_low = mesh_->current_position(v[0]), box_high = box_low;
+    for (int k = 1; k < 4; ++k) {
+      box_low = box_low.cwiseMin(mesh_->current_position(v[k]));
+      box_high = box_high.cwiseMax(mesh_->current_position(v[k]));
+    }
+    return (box_low.array() > high.array()).any() || (box_high.array() < low.array()).any();
   });
   for (const TetId t : near) {
-    const mesh::TetVertices v = mesh_->tet(t);
+    const mesh::TetVertices v = mesh_->tet_even_if_removed(t);
     for (const auto& [i, j] : mesh::kTetEdges) {
       const EdgeKey key = MakeEdgeKey(v[i], v[j]);
       if (edge_hits_.contains(key) || !tested_edges.insert(key).second) continue;
@@ -112,10 +217,21 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
     }
   }
   for (const EdgeKey key : new_edges) {
-    Join(mesh_->TetsAroundEdge(VertexId(static_cast<std::uint32_t>(key >> 32)),
-                               VertexId(static_cast<std::uint32_t>(key))));
+    const std::array<VertexId, 2> ends = {VertexId(static_cast<std::uint32_t>(key >> 32)),
+                                          VertexId(static_cast<std::uint32_t>(key))};
+    if (mode_ == CutMode::kDeferred) {
+      Join(mesh_->TetsAroundEdge(ends[0], ends[1]));
+    } else {
+      for (const TetId t : TetsWith(ends)) open_.try_emplace(t);
+    }
   }
-  for (const FaceKey& key : new_faces) Join(mesh_->TetsAroundFace(key[0], key[1], key[2]));
+  for (const FaceKey& key : new_faces) {
+    if (mode_ == CutMode::kDeferred) {
+      Join(mesh_->TetsAroundFace(key[0], key[1], key[2]));
+    } else {
+      for (const TetId t : TetsWith(key)) open_.try_emplace(t);
+    }
+  }
   return near;
 }
 
@@ -145,8 +261,7 @@ void Cutter::Join(std::span<const TetId> tets) {
   }
 }
 
-bool Cutter::BladeInside(TetId t, const BladePose& pose) const {
-  const mesh::TetVertices& v = mesh_->tet(t);
+bool Cutter::BladeInside(const mesh::TetVertices& v, const BladePose& pose) const {
   std::array<Eigen::Vector3d, 4> x;
   for (int i = 0; i < 4; ++i) x[i] = mesh_->current_position(v[i]);
   for (const Eigen::Vector3d& end : {pose.tip, pose.heel}) {
@@ -188,9 +303,10 @@ void Cutter::SplitReadyGroups(const BladePose* pose, const std::vector<TetId>* n
   for (std::vector<TetId>& group : ready) SplitGroup(std::move(group));
 }
 
-VertexId Cutter::MakeVertex(const std::array<VertexId, 3>& from, const Eigen::Vector3d& weights) {
+VertexId Cutter::MakeVertex(const std::array<VertexId, 4>& from, const Eigen::Vector4d& weights) {
   Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] == 0) continue;
     rest += weights[k] * mesh_->rest_position(from[k]);
     current += weights[k] * mesh_->current_position(from[k]);
   }
@@ -208,7 +324,8 @@ std::vector<MadeVertex> Cutter::TakeMadeVertices() {
   return made;
 }
 
-std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners) {
+std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
+                                        std::vector<EdgeKey>* given) {
   std::vector<EdgeCut> cuts;
   for (const auto& [i, j] : mesh::kTetEdges) {
     const auto it = edge_hits_.find(MakeEdgeKey(corners[i], corners[j]));
@@ -217,9 +334,10 @@ std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners) {
     const bool i_low = Index(corners[i]) < Index(corners[j]);
     const VertexId lo = i_low ? corners[i] : corners[j], hi = i_low ? corners[j] : corners[i];
     if (hit.near_low == kNoVertex) {
-      const Eigen::Vector3d weights(1 - hit.fraction, hit.fraction, 0);
-      hit.near_low = MakeVertex({lo, hi, lo}, weights);
-      hit.near_high = MakeVertex({lo, hi, lo}, weights);
+      const Eigen::Vector4d weights(1 - hit.fraction, hit.fraction, 0, 0);
+      hit.near_low = MakeVertex({lo, hi, lo, lo}, weights);
+      hit.near_high = MakeVertex({lo, hi, lo, lo}, weights);
+      if (given != nullptr) given->push_back(it->first);
     }
     cuts.push_back({i_low ? i : j, i_low ? j : i, hit.near_low, hit.near_high});
   }
@@ -251,7 +369,10 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       for (const auto& face : mesh::kTetFaces) {
         const auto it = face_hits_.find(MakeFaceKey(v[face[0]], v[face[1]], v[face[2]]));
         if (it != face_hits_.end() && it->second.vertex == kNoVertex) {
-          it->second.vertex = MakeVertex(it->first, it->second.barycentric);
+          const FaceKey& k = it->first;
+          it->second.vertex = MakeVertex(
+              {k[0], k[1], k[2], k[0]},
+              {it->second.barycentric[0], it->second.barycentric[1], it->second.barycentric[2], 0});
         }
       }
     }
@@ -320,6 +441,306 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
   for (const TetId t : group) {
     members_.erase(t);
     group_of_.erase(t);
+  }
+}
+
+void Cutter::UpdateOpenTets(const BladePose* pose) {
+  const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
+  const auto current = [&](VertexId v) { return mesh_->current_position(v); };
+  struct Plan {
+    TetId tet;
+    bool temporary;
+    int table_case;
+    TetSplit split;
+  };
+  while (true) {  // again after a tet the blade left is frozen or has its hits dropped
+    last_pose_ = {};
+    std::vector<TetId> tets;
+    for (const auto& entry : open_) tets.push_back(entry.first);
+    std::sort(tets.begin(), tets.end());
+    // What this attempt makes, to be taken back if it is not applied.
+    std::vector<EdgeKey> edges_given;
+    std::vector<FaceKey> faces_given;
+    absl::flat_hash_map<FaceKey, TemporaryPoint, FaceKeyHash> points;
+    const auto temporary_point = [&](const FaceKey& place, const std::array<VertexId, 4>& from,
+                                     const Eigen::Vector4d& weights) {
+      const auto it = points.find(place);
+      if (it != points.end()) return it->second.vertex;
+      const VertexId v = MakeVertex(from, weights);
+      points[place] = {v, weights};
+      return v;
+    };
+    std::vector<Plan> plans;
+    std::vector<TetId> failed_final;
+    bool failed_temporary = false;
+    for (const TetId t : tets) {
+      const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
+      const bool inside = pose != nullptr && BladeInside(corners, *pose);
+      const std::vector<EdgeCut> cuts = EdgeCutsOf(corners, &edges_given);
+      // Face points that can open: on a face with a cut edge (a permanent one first).
+      std::vector<FacePoint> used;
+      Eigen::Vector4d used_sum = Eigen::Vector4d::Zero();  // their corner weights, summed
+      int face_hits = 0, temporary_faces = 0;
+      for (int k = 0; k < 4; ++k) {
+        const auto& f = mesh::kTetFaces[k];
+        const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+        const auto hit = face_hits_.find(key);
+        face_hits += hit != face_hits_.end();
+        std::optional<Eigen::Vector3d> crossing;
+        if (inside) {
+          const auto c = geometry::IntersectSegmentTriangle(pose->tip, pose->heel, current(key[0]),
+                                                            current(key[1]), current(key[2]));
+          temporary_faces += c.has_value();
+          if (c && c->barycentric.minCoeff() >= kDegenerate) crossing = c->barycentric;
+        }
+        const bool cut_edge = edge_hits_.contains(MakeEdgeKey(key[0], key[1])) ||
+                              edge_hits_.contains(MakeEdgeKey(key[1], key[2])) ||
+                              edge_hits_.contains(MakeEdgeKey(key[0], key[2]));
+        if (!cut_edge) continue;
+        Eigen::Vector3d barycentric;
+        if (hit != face_hits_.end()) {
+          if (hit->second.vertex == kNoVertex) {
+            const Eigen::Vector3d& b = hit->second.barycentric;
+            hit->second.vertex =
+                MakeVertex({key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0});
+            faces_given.push_back(key);
+          }
+          used.push_back({k, hit->second.vertex});
+          barycentric = hit->second.barycentric;
+        } else if (crossing) {
+          const Eigen::Vector3d& b = *crossing;
+          used.push_back(
+              {k, temporary_point(key, {key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0})});
+          barycentric = b;
+        } else {
+          continue;
+        }
+        for (int m = 0; m < 3; ++m) {
+          used_sum[std::find(corners.begin(), corners.end(), key[m]) - corners.begin()] +=
+              barycentric[m];
+        }
+      }
+      Eigen::Vector4d tip_weights = Eigen::Vector4d::Zero();
+      int table_case = 0;
+      if (inside) {
+        tip_weights = TetBarycentric(current(corners[0]), current(corners[1]), current(corners[2]),
+                                     current(corners[3]), pose->tip);
+        bool share_corner = false;
+        if (cuts.size() == 2) {
+          share_corner =
+              cuts[0].corner_a == cuts[1].corner_a || cuts[0].corner_a == cuts[1].corner_b ||
+              cuts[0].corner_b == cuts[1].corner_a || cuts[0].corner_b == cuts[1].corner_b;
+        }
+        table_case = ProgressiveCase(static_cast<int>(cuts.size()), face_hits, temporary_faces,
+                                     tip_weights.minCoeff() > 0, share_corner);
+        ++last_pose_.tets_by_case[table_case];
+      }
+      const bool tip_inside = inside && tip_weights.minCoeff() >= kTipMargin;
+      TetSplit split;
+      if (tip_inside && !cuts.empty()) {
+        // The crack reaches the tip.
+        split = SplitAsStar(corners, cuts, used,
+                            temporary_point(InsidePlace(t), corners, tip_weights), rest);
+      } else if (used.size() == 2) {
+        split = SplitCrackedTet(corners, cuts, {used[0], used[1]}, rest);
+      } else if (used.empty() && !cuts.empty()) {
+        split = SplitCompletelyCutTet(corners, cuts);
+      } else if (used.empty()) {
+        plans.push_back({t, inside, table_case, {}});  // nothing can open: the tet stays
+        continue;
+      }
+      if (split.tets.empty() && inside && !used.empty()) {
+        // A pattern the minimal cases do not cover (two cracks, say): a cone from the middle
+        // of its face points, which lies inside the tet.
+        const Eigen::Vector4d middle = used_sum / static_cast<double>(used.size());
+        if (middle.minCoeff() >= kTipMargin) {
+          split = SplitAsStar(corners, cuts, used, temporary_point(InsidePlace(t), corners, middle),
+                              rest);
+        }
+      }
+      if (split.tets.empty()) {
+        if (inside) {
+          failed_temporary = true;
+        } else {
+          failed_final.push_back(t);
+        }
+        continue;
+      }
+      plans.push_back({t, inside, table_case, std::move(split)});
+    }
+
+    if (failed_temporary || !failed_final.empty()) {
+      // Take back what this attempt made; the mesh is as it was.
+      for (const EdgeKey key : edges_given) {
+        EdgeHit& hit = edge_hits_.at(key);
+        (void)mesh_->RemoveVertex(hit.near_low);
+        (void)mesh_->RemoveVertex(hit.near_high);
+        hit.near_low = hit.near_high = kNoVertex;
+      }
+      for (const FaceKey& key : faces_given) {
+        FaceHit& hit = face_hits_.at(key);
+        (void)mesh_->RemoveVertex(hit.vertex);
+        hit.vertex = kNoVertex;
+      }
+      for (const auto& [place, point] : points) (void)mesh_->RemoveVertex(point.vertex);
+      if (failed_final.empty()) {
+        ++statistics_.held_poses;
+        last_pose_.held = true;
+        break;
+      }
+      for (const TetId t : failed_final) {
+        OpenTet& open = open_.at(t);
+        const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
+        if (!open.pieces.empty()) {
+          // Frozen: its temporary points become permanent, so its neighbours keep them.
+          for (auto it = temporary_points_.begin(); it != temporary_points_.end();) {
+            const bool in_piece =
+                std::any_of(open.pieces.begin(), open.pieces.end(), [&](TetId piece) {
+                  return mesh::TetHasVertex(mesh_->tet(piece), it->second.vertex);
+                });
+            if (!in_piece) {
+              ++it;
+              continue;
+            }
+            if (it->first[0] != it->first[1]) {
+              face_hits_[it->first] = {it->second.weights.head<3>(), it->second.vertex};
+            }
+            temporary_points_.erase(it++);
+          }
+          ++statistics_.frozen_tets;
+        } else {
+          // Never subdivided: its hits were never used; drop them.
+          for (const auto& [i, j] : mesh::kTetEdges) {
+            const auto it = edge_hits_.find(MakeEdgeKey(corners[i], corners[j]));
+            if (it == edge_hits_.end() || it->second.near_low != kNoVertex) continue;
+            edge_hits_.erase(it);
+            ++statistics_.dropped_hits;
+          }
+          for (const auto& f : mesh::kTetFaces) {
+            const auto it =
+                face_hits_.find(MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]));
+            if (it == face_hits_.end() || it->second.vertex != kNoVertex) continue;
+            face_hits_.erase(it);
+            ++statistics_.dropped_hits;
+          }
+        }
+        CloseOpenTet(t);
+        ForgetHitsOf(corners);
+      }
+      continue;
+    }
+
+    // Apply: temporary points by place, for the signatures.
+    absl::flat_hash_map<VertexId, std::uint64_t> place_code;
+    for (const auto& [place, point] : points) {
+      place_code[point.vertex] =
+          (std::uint64_t{1} << 63) |
+          (absl::HashOf(Index(place[0]), Index(place[1]), Index(place[2])) >> 1);
+    }
+    const auto code = [&](VertexId v) {
+      const auto it = place_code.find(v);
+      return it == place_code.end() ? std::uint64_t{Index(v)} : it->second;
+    };
+    absl::flat_hash_set<VertexId> old_temporary;
+    for (const auto& entry : temporary_points_) old_temporary.insert(entry.second.vertex);
+    std::vector<mesh::TetVertices> closed;
+    for (Plan& plan : plans) {
+      OpenTet& open = open_.at(plan.tet);
+      const mesh::TetVertices corners = mesh_->tet_even_if_removed(plan.tet);
+      if (plan.split.tets.empty()) {
+        assert(open.pieces.empty());
+        if (!plan.temporary) {
+          closed.push_back(corners);
+          CloseOpenTet(plan.tet);
+        }
+        continue;
+      }
+      std::vector<std::array<std::uint64_t, 4>> signature;
+      for (const mesh::TetVertices& piece : plan.split.tets) {
+        std::array<std::uint64_t, 4> c = {code(piece[0]), code(piece[1]), code(piece[2]),
+                                          code(piece[3])};
+        std::sort(c.begin(), c.end());
+        signature.push_back(c);
+      }
+      std::sort(signature.begin(), signature.end());
+      const bool moved = plan.temporary && signature == open.signature;
+      const auto uses_temporary = [&](const mesh::TetVertices& v, const auto& set) {
+        return std::any_of(v.begin(), v.end(), [&](VertexId x) { return set.contains(x); });
+      };
+      // Take out what stands for the tet now (when only points moved: the tets using them).
+      if (open.pieces.empty()) {
+        if (mesh_->IsAlive(plan.tet)) (void)mesh_->RemoveTet(plan.tet);
+      }
+      std::vector<TetId> kept;
+      for (const TetId piece : open.pieces) {
+        if (moved && !uses_temporary(mesh_->tet(piece), old_temporary)) {
+          kept.push_back(piece);
+          continue;
+        }
+        owner_.erase(piece);
+        (void)mesh_->RemoveTet(piece);
+      }
+      for (mesh::TetVertices piece : plan.split.tets) {
+        if (moved && !uses_temporary(piece, place_code)) continue;  // kept as it was
+        if (geometry::SignedVolume(rest(piece[0]), rest(piece[1]), rest(piece[2]), rest(piece[3])) <
+            0) {
+          std::swap(piece[2], piece[3]);
+        }
+        const absl::StatusOr<TetId> added = mesh_->AddTet(piece);
+        assert(added.ok());
+        source_tet_[*added] = SourceTet(plan.tet);
+        kept.push_back(*added);
+        if (plan.temporary) owner_[*added] = plan.tet;
+      }
+      if (plan.temporary) {
+        ++(moved ? statistics_.moved : statistics_.rebuilt);
+        ++statistics_.poses_by_case[plan.table_case];
+        open.pieces = std::move(kept);
+        open.signature = std::move(signature);
+        open.last_case = plan.table_case;
+      } else {
+        ++statistics_.cut_tets;
+        statistics_.new_tets += plan.split.tets.size();
+        ++statistics_.tets_by_case[static_cast<int>(plan.split.cut_case)];
+        open.pieces.clear();
+        closed.push_back(corners);
+        CloseOpenTet(plan.tet);
+      }
+    }
+    // The previous pose's temporary points no tet uses any more.
+    for (const auto& [place, point] : temporary_points_) {
+      if (!place_code.contains(point.vertex)) (void)mesh_->RemoveVertex(point.vertex);
+    }
+    temporary_points_ = std::move(points);
+    for (const mesh::TetVertices& corners : closed) ForgetHitsOf(corners);
+    break;
+  }
+  last_pose_.open_tets = open_.size();
+  for (const auto& [t, open] : open_) last_pose_.temporary_tets += open.pieces.size();
+}
+
+void Cutter::CloseOpenTet(TetId t) {
+  const auto it = open_.find(t);
+  if (it == open_.end()) return;
+  for (const TetId piece : it->second.pieces) owner_.erase(piece);
+  open_.erase(it);
+}
+
+void Cutter::ForgetHitsOf(const mesh::TetVertices& corners) {
+  const auto open_has = [&](std::initializer_list<VertexId> vertices) {
+    return std::any_of(open_.begin(), open_.end(), [&](const auto& entry) {
+      const mesh::TetVertices& c = mesh_->tet_even_if_removed(entry.first);
+      return std::all_of(vertices.begin(), vertices.end(),
+                         [&](VertexId v) { return mesh::TetHasVertex(c, v); });
+    });
+  };
+  for (const auto& [i, j] : mesh::kTetEdges) {
+    if (!open_has({corners[i], corners[j]})) edge_hits_.erase(MakeEdgeKey(corners[i], corners[j]));
+  }
+  for (const auto& f : mesh::kTetFaces) {
+    if (!open_has({corners[f[0]], corners[f[1]], corners[f[2]]})) {
+      face_hits_.erase(MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]));
+    }
   }
 }
 

@@ -1,5 +1,4 @@
-// Cuts a tet mesh along a blade's path (the paper's section 3), deferred: the tets the blade
-// has crossed are subdivided once it has left them.
+// Cuts a tet mesh along a blade's path (the paper's sections 3 and 4).
 //
 // Per pose, the swept surface between the previous and the new blade edge is tested against
 // the edges of the tets near it (found through a TetGrid on the deformed positions), and the
@@ -7,12 +6,25 @@
 // along the edge or barycentric coordinates on the face; the first crossing wins. New
 // vertices take their rest and current positions from the same coordinates.
 //
-// Conformity: a cut edge becomes two vertices in every tet around it at once, and a crossed
-// face is split in both its tets at once, so the tets joined through cut edges and crossed
-// faces form a group that is split in one step, when the blade has left all of them (or at
-// Finish). A group member whose pattern is none of the five cases (a blade that turned back,
-// or hits too close to a vertex or edge, which snapping will handle) has its hits dropped,
-// and the group is re-examined: the mesh always stays valid, at worst less cut.
+// Progressive (the default): after every pose, each tet with hits is subdivided at once. While
+// the blade is in it, the subdivision is temporary: the points where the blade edge crosses
+// its faces (temporary face points) count as face points, and while the tip is inside, the
+// crack reaches the tip (a cone from it). Points on a face with no cut edge cannot open and are
+// left out, so no face ever carries two points (the overlap of the paper's Figure 5 cannot
+// arise). When only the blade moved, the temporary points are made again at their new places
+// with the tets that use them; when the case or topology changed, the tet's subdivision is
+// rebuilt; when the blade has left, the final minimal subdivision replaces it. A pose whose
+// subdivisions cannot all be made (a pattern no case covers) leaves the mesh as it was (held);
+// a tet the blade left in such a pattern keeps its last temporary subdivision (frozen), so the
+// crack it made stays. Withdrawing the blade makes the temporary face points permanent.
+//
+// Deferred: the tets the blade has crossed are subdivided once it has left them. The tets
+// joined through cut edges and crossed faces form a group split in one step, when the blade has
+// left all of them (or at Finish). A group member whose pattern is none of the five cases has
+// its hits dropped, and the group is re-examined.
+//
+// Either way the mesh stays valid and conforming after every pose: a cut edge becomes two
+// vertices in every tet around it at once, and a face is triangulated alike in both its tets.
 #pragma once
 
 #include <array>
@@ -36,16 +48,39 @@ namespace kerf::cut {
 // (displacement, velocity) follows it by the same weights.
 struct MadeVertex {
   mesh::VertexId vertex;
-  std::array<mesh::VertexId, 3> from;
-  Eigen::Vector3d weights;
+  std::array<mesh::VertexId, 4> from;  // unused entries have weight 0
+  Eigen::Vector4d weights;
 };
+
+enum class CutMode { kProgressive, kDeferred };
+
+// The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
+// temporary face points and whether the tip is inside. Case 8 and 9 have the same counts; in
+// 8 the two cut edges share a corner, in 9 they are opposite. 0: none of the eleven.
+int ProgressiveCase(int edges, int faces, int temporary_faces, bool tip_inside,
+                    bool edges_share_corner);
+inline constexpr int kProgressiveCases = 11;
 
 struct CutStatistics {
   std::size_t cut_tets = 0;                   // original tets replaced
   std::size_t new_tets = 0;                   // tets that replaced them
-  std::array<std::size_t, 6> tets_by_case{};  // cut tets by CutCase (index = enum value)
+  std::array<std::size_t, 7> tets_by_case{};  // cut tets by CutCase (index = enum value)
   std::size_t dropped_hits = 0;               // hits that could not be realised
   std::size_t degenerate_hits = 0;            // crossings too close to a vertex or edge, skipped
+  // Progressive cutting, summed over poses.
+  std::array<std::size_t, kProgressiveCases + 1> poses_by_case{};  // tet-poses by Table 1 case
+  std::size_t rebuilt = 0;      // temporary subdivisions made anew (first, or case changed)
+  std::size_t moved = 0;        // temporary subdivisions whose points only moved
+  std::size_t held_poses = 0;   // poses that left the mesh as it was
+  std::size_t frozen_tets = 0;  // tets left in their last temporary subdivision
+};
+
+// What the last pose did (progressive cutting).
+struct PoseSummary {
+  std::array<std::size_t, kProgressiveCases + 1> tets_by_case{};  // tets the blade is in
+  std::size_t open_tets = 0;       // tets with hits not yet finally subdivided
+  std::size_t temporary_tets = 0;  // tets standing in for them now
+  bool held = false;               // the mesh was left as it was
 };
 
 class Cutter {
@@ -53,22 +88,28 @@ class Cutter {
   // The mesh must outlive the cutter and change only through it while it cuts. `cell_size`
   // (m) sets the grid; a mean edge length is a good choice. INVALID_ARGUMENT for a bad size.
   static absl::StatusOr<Cutter> Create(mesh::TetMesh* mesh, double cell_size,
-                                       const BladeLimits& limits = {});
+                                       const BladeLimits& limits = {},
+                                       CutMode mode = CutMode::kProgressive);
 
   // Applies one pose. INVALID_ARGUMENT (and nothing changed) for a bad pose. The first pose
   // only places the blade. Cost: the tets near the swept surface and the groups split.
   absl::Status ApplyPose(const BladePose& pose);
 
-  // The blade is withdrawn: every group still waiting is split.
+  // The blade is withdrawn: every tet still waiting is split (progressive: the temporary face
+  // points become permanent, so the crack stays).
   void Finish();
 
   // Call after the mesh deformed (a physics step): the spatial index follows the current
   // positions. O(vertices).
   absl::Status MeshDeformed() { return grid_.Refresh(); }
 
+  CutMode mode() const { return mode_; }
   const CutStatistics& statistics() const { return statistics_; }
-  // Tets with hits that wait for the blade to leave their group.
-  std::size_t waiting_tets() const { return group_of_.size(); }
+  const PoseSummary& last_pose() const { return last_pose_; }
+  // Tets with hits not yet finally subdivided.
+  std::size_t waiting_tets() const { return group_of_.size() + open_.size(); }
+  // Whether `v` is a temporary point (a temporary face point or the tip) of the current pose.
+  bool IsTemporaryVertex(mesh::VertexId v) const;
 
   // The tet of the mesh as it was when the cutter was created that `t` came from (t itself
   // if it was never cut).
@@ -99,12 +140,39 @@ class Cutter {
     }
   };
 
-  Cutter(mesh::TetMesh* mesh, TetGrid grid, const BladeLimits& limits)
-      : mesh_(mesh), grid_(std::move(grid)), limits_(limits) {}
+  // A tet with hits, progressive: what stands for it in the mesh now.
+  struct OpenTet {
+    std::vector<mesh::TetId> pieces;  // live tets replacing it; empty: it is itself in the mesh
+    // The pieces' corners with temporary points named by place (see Signature).
+    std::vector<std::array<std::uint64_t, 4>> signature;
+    int last_case = -1;
+  };
+  // A temporary point of the applied subdivisions.
+  struct TemporaryPoint {
+    mesh::VertexId vertex;
+    Eigen::Vector4d weights;  // on the face's vertices (key order) or the tet's corners
+  };
 
-  // Records the hits of the swept surface from `from` to `to`, and returns the tets near it.
+  Cutter(mesh::TetMesh* mesh, TetGrid grid, const BladeLimits& limits, CutMode mode)
+      : mesh_(mesh), grid_(std::move(grid)), limits_(limits), mode_(mode) {}
+
+  // Records the hits of the swept surface from `from` to `to`, and returns the tets near it
+  // (progressive: the open tets for their pieces).
   std::vector<mesh::TetId> RecordHits(const BladePose& from, const BladePose& to);
-  bool BladeInside(mesh::TetId t, const BladePose& pose) const;
+  bool BladeInside(const mesh::TetVertices& corners, const BladePose& pose) const;
+  bool BladeInside(mesh::TetId t, const BladePose& pose) const {
+    return BladeInside(mesh_->tet(t), pose);
+  }
+  // The tet a live tet stands for: its open tet if it is a temporary piece, else itself.
+  mesh::TetId OwnerOf(mesh::TetId t) const;
+  // The tets (as OwnerOf) with both vertices, or all three.
+  std::vector<mesh::TetId> TetsWith(std::span<const mesh::VertexId> vertices) const;
+  // Progressive: subdivides every open tet for the blade at `pose` (null: withdrawn).
+  void UpdateOpenTets(const BladePose* pose);
+  // Ends an open tet's life as such, keeping what stands for it now.
+  void CloseOpenTet(mesh::TetId t);
+  // Forgets the hits of `corners` that no open tet has any more.
+  void ForgetHitsOf(const mesh::TetVertices& corners);
   // Joins the groups of tets that share a new hit (each made a group if it was not in one).
   void Join(std::span<const mesh::TetId> tets);
   mesh::TetId GroupOf(mesh::TetId t);
@@ -112,14 +180,17 @@ class Cutter {
   // tets near it, `near` (every group if `near` is null). O(near + groups).
   void SplitReadyGroups(const BladePose* pose, const std::vector<mesh::TetId>* near);
   void SplitGroup(std::vector<mesh::TetId> group);
-  std::vector<EdgeCut> EdgeCutsOf(const mesh::TetVertices& corners);
+  // The tet's cut edges, their vertices made if needed (and their keys added to `given`).
+  std::vector<EdgeCut> EdgeCutsOf(const mesh::TetVertices& corners,
+                                  std::vector<EdgeKey>* given = nullptr);
   std::vector<FacePoint> FacePointsOf(const mesh::TetVertices& corners) const;
-  mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 3>& from,
-                            const Eigen::Vector3d& weights);
+  mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& from,
+                            const Eigen::Vector4d& weights);
 
   mesh::TetMesh* mesh_;
   TetGrid grid_;
   BladeLimits limits_;
+  CutMode mode_;
   std::optional<BladePose> previous_;
   absl::flat_hash_map<EdgeKey, EdgeHit> edge_hits_;
   absl::flat_hash_map<FaceKey, FaceHit, FaceKeyHash> face_hits_;
@@ -128,8 +199,14 @@ class Cutter {
   absl::flat_hash_map<mesh::TetId, mesh::TetId> group_of_;
   absl::flat_hash_map<mesh::TetId, std::vector<mesh::TetId>> members_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> source_tet_;  // tets the cut made, by source
+  // Progressive state: the open tets, their pieces' owners, and the temporary points in the
+  // mesh by place (a face key, or the tip's tet as {t, t, t}).
+  absl::flat_hash_map<mesh::TetId, OpenTet> open_;
+  absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;
+  absl::flat_hash_map<FaceKey, TemporaryPoint, FaceKeyHash> temporary_points_;
   std::vector<MadeVertex> made_vertices_;
   CutStatistics statistics_;
+  PoseSummary last_pose_;
 };
 
 }  // namespace kerf::cut

@@ -379,4 +379,69 @@ TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vect
   return split;
 }
 
+TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                     const std::vector<FacePoint>& face_points, VertexId apex,
+                     const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  const DiagonalChooser key_rule = KeyRule(cuts);
+  std::vector<Triangle> boundary;
+  for (int k = 0; k < 4; ++k) {
+    const std::array<int, 3>& face = mesh::kTetFaces[k];
+    std::optional<VertexId> point;
+    for (const FacePoint& f : face_points) {
+      if (f.face == k) point = f.vertex;
+    }
+    // The face's boundary, corner by corner, with both copies of each cut point between.
+    std::vector<VertexId> ring;
+    std::vector<const EdgeCut*> face_cuts;
+    for (int n = 0; n < 3; ++n) {
+      const int i = face[n], j = face[(n + 1) % 3];
+      ring.push_back(corners[i]);
+      if (const EdgeCut* cut = FindCut(cuts, i, j); cut != nullptr) {
+        ring.push_back(Near(cuts, i, j));
+        ring.push_back(Near(cuts, j, i));
+        face_cuts.push_back(cut);
+      }
+    }
+    if (point) {
+      for (std::size_t n = 0; n < ring.size(); ++n) {
+        const VertexId p = ring[n], q = ring[(n + 1) % ring.size()];
+        const bool slit = std::any_of(face_cuts.begin(), face_cuts.end(), [&](const EdgeCut* c) {
+          return (p == c->near_a && q == c->near_b) || (p == c->near_b && q == c->near_a);
+        });
+        if (!slit) boundary.push_back({*point, p, q});
+      }
+    } else if (face_cuts.empty()) {
+      boundary.push_back({corners[face[0]], corners[face[1]], corners[face[2]]});
+    } else if (face_cuts.size() == 2) {
+      // The corner on both cut edges is cut off; the rest of the face is a quadrilateral.
+      const EdgeCut& x = *face_cuts[0];
+      const EdgeCut& y = *face_cuts[1];
+      const int c =
+          (x.corner_a == y.corner_a || x.corner_a == y.corner_b) ? x.corner_a : x.corner_b;
+      const int cx = x.corner_a == c ? x.corner_b : x.corner_a;
+      const int cy = y.corner_a == c ? y.corner_b : y.corner_a;
+      boundary.push_back({corners[c], Near(cuts, c, cx), Near(cuts, c, cy)});
+      for (const Triangle& t : QuadTriangles(
+               {Near(cuts, cx, c), corners[cx], corners[cy], Near(cuts, cy, c)}, key_rule)) {
+        boundary.push_back(t);
+      }
+    } else {
+      return TetSplit{};
+    }
+  }
+  TetSplit split;
+  split.tets = Cone(apex, boundary);
+  const double volume = std::abs(SignedVolume(corners, rest));
+  double total = 0;
+  for (const mesh::TetVertices& t : split.tets) {
+    const double v = std::abs(SignedVolume(t, rest));
+    if (!(v > 1e-12 * volume)) return TetSplit{};
+    total += v;
+  }
+  // Overlapping (inverted) tets make the absolute volumes add up to more than the tet.
+  if (std::abs(total - volume) > 1e-10 * volume) return TetSplit{};
+  split.cut_case = CutCase::kStar;
+  return split;
+}
+
 }  // namespace kerf::cut

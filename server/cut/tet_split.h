@@ -36,6 +36,7 @@ enum class CutCase {
   kCrackOneEdge,     // case iii: one cut edge, the crack ending inside (6 tets)
   kCrackTwoEdges,    // case iv: two cut edges sharing a corner, the crack ending inside (8 tets)
   kCrackThreeEdges,  // case v: three cut edges in a path, the crack ending inside (9-10 tets)
+  kStar,             // progressive only: a cone from a point inside over the tet's faces
 };
 
 // Where the blade's tip path crossed a face: one vertex, the base of the crack.
@@ -64,5 +65,17 @@ TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vect
 TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
                          const std::array<FacePoint, 2>& face_points,
                          const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
+
+// A tet whose crack reaches a point `apex` strictly inside it (the blade's tip, while the
+// blade is in the tet, or a point of a crack the minimal cases do not cover): the cone from the
+// apex over the tet's faces, each face triangulated by the rule every splitter here follows,
+// so a neighbour split by any of them conforms. A face with a face point fans from it, leaving
+// a slit to each cut edge of the face; a face with two cut edges and no point is a corner
+// triangle and a quadrilateral split by the key rule; a face with neither is whole. The crack
+// then opens from the apex to the faces (its faces are the cone's faces through the slits).
+// An empty result (kNone) when a face has another pattern or a tet would be flat or inverted.
+TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                     const std::vector<FacePoint>& face_points, mesh::VertexId apex,
+                     const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
 }  // namespace kerf::cut

@@ -69,7 +69,7 @@ absl::Status Simulation::FollowCut() {
   state_.velocity.resize(n, Eigen::Vector3d::Zero());
   for (const cut::MadeVertex& m : made) {
     Eigen::Vector3d u = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 4; ++k) {
       u += m.weights[k] * state_.displacement[mesh::Index(m.from[k])];
       v += m.weights[k] * state_.velocity[mesh::Index(m.from[k])];
     }

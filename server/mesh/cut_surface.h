@@ -1,0 +1,26 @@
+// The surface of a cut mesh split into what was there before and the crack the cut opened.
+//
+// Cut vertices come in copies at the same rest position (one per side of the crack), so a
+// face on the crack has a twin: another face in one tet with the same three rest positions.
+// Every other face in one tet must lie on the original surface and tile it exactly once; a
+// non-conforming subdivision (a face of one tet split differently in its neighbour) leaves a
+// face with neither, and the surface's area grows. So the area of the non-crack faces, which
+// must equal the original surface's, checks conformity and that no face overlaps another.
+#pragma once
+
+#include <cstddef>
+
+#include "mesh/tet_mesh.h"
+
+namespace kerf::mesh {
+
+struct CutSurface {
+  double surface_area = 0;  // m^2, faces in one tet without a twin (rest positions)
+  double crack_area = 0;    // m^2, the crack opened: half the area of the twinned faces
+  std::size_t crack_faces = 0;
+};
+
+// O(tets * star size).
+CutSurface MeasureCutSurface(const TetMesh& mesh);
+
+}  // namespace kerf::mesh
