@@ -5,6 +5,7 @@
 #include "cli/command_args.h"
 #include "cli/cut_command.h"
 #include "cli/json_output.h"
+#include "cut/progressive_case_paths.h"
 #include "embedded_text.h"
 #include "kerf/v1/cut_report.pb.h"
 #include "mesh/mesh_quality.h"
@@ -53,17 +54,54 @@ absl::StatusOr<std::string> LatticeCut(bool json) {
   return out;
 }
 
+// Every scripted path of cut::ProgressiveCasePaths, cut progressively: how often each Table 1
+// case was reached, and on which paths, and whether every intermediate mesh was valid.
+absl::StatusOr<std::string> ProgressiveCases(bool json) {
+  kerf::v1::CutExperiment experiment;
+  experiment.set_name("progressive-cases");
+  experiment.set_scene("a 6 x 2 x 2 cm lattice of 1 cm cubes, at rest");
+  for (const cut::ScriptedPath& path : cut::ProgressiveCasePaths()) {
+    mesh::TetMesh m = cut::ScriptedPathLattice();
+    absl::StatusOr<kerf::v1::CutReport> report = CutAlongPath(&m, path.poses, path.name);
+    if (!report.ok()) return report.status();
+    *experiment.add_cuts() = *std::move(report);
+  }
+  if (json) return FormatProtoJson(experiment);
+  std::string out = absl::StrCat("progressive-cases: ", experiment.scene(),
+                                 "\n\n| case (Table 1) | tet-poses | paths |\n|---|---|---|\n");
+  for (int k = 1; k <= cut::kProgressiveCases; ++k) {
+    std::uint32_t total = 0;
+    std::string names;
+    for (const kerf::v1::CutReport& r : experiment.cuts()) {
+      if (r.poses_by_case(k) == 0) continue;
+      total += r.poses_by_case(k);
+      absl::StrAppend(&names, names.empty() ? "" : ", ", r.path());
+    }
+    absl::StrAppendFormat(&out, "| %d | %u | %s |\n", k, total, names);
+  }
+  out +=
+      "\n| path | poses | held | frozen | rebuilt | moved | invalid poses | cut tets | "
+      "components |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const kerf::v1::CutReport& r : experiment.cuts()) {
+    absl::StrAppendFormat(&out, "| %s | %u | %u | %u | %u | %u | %u | %u | %u |\n", r.path(),
+                          r.poses(), r.held_poses(), r.frozen_tets(), r.rebuilt(), r.moved(),
+                          r.invalid_poses(), r.cut_tets(), r.components());
+  }
+  return out;
+}
+
 }  // namespace
 
 absl::StatusOr<std::string> RunExperimentCommand(const std::vector<absl::string_view>& args) {
   CommandArgs rest(args);
   const bool json = rest.TakeFlag("--json");
   absl::StatusOr<std::vector<absl::string_view>> name =
-      rest.TakePositionals(1, "kerf experiment lattice-cut [--json]");
+      rest.TakePositionals(1, "kerf experiment lattice-cut|progressive-cases [--json]");
   if (!name.ok()) return name.status();
   if ((*name)[0] == "lattice-cut") return LatticeCut(json);
-  return absl::InvalidArgumentError(
-      absl::StrCat("unknown experiment '", (*name)[0], "'; there is: lattice-cut"));
+  if ((*name)[0] == "progressive-cases") return ProgressiveCases(json);
+  return absl::InvalidArgumentError(absl::StrCat("unknown experiment '", (*name)[0],
+                                                 "'; there are: lattice-cut, progressive-cases"));
 }
 
 }  // namespace kerf::cli

@@ -694,7 +694,6 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       }
       if (plan.temporary) {
         ++(moved ? statistics_.moved : statistics_.rebuilt);
-        ++statistics_.poses_by_case[plan.table_case];
         open.pieces = std::move(kept);
         open.signature = std::move(signature);
         open.last_case = plan.table_case;
@@ -714,6 +713,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     temporary_points_ = std::move(points);
     for (const mesh::TetVertices& corners : closed) ForgetHitsOf(corners);
     break;
+  }
+  for (int k = 0; k <= kProgressiveCases; ++k) {
+    statistics_.poses_by_case[k] += last_pose_.tets_by_case[k];
   }
   last_pose_.open_tets = open_.size();
   for (const auto& [t, open] : open_) last_pose_.temporary_tets += open.pieces.size();

@@ -61,6 +61,15 @@ absl::Status TensorMassModel::SyncWithMesh() {
   GrowToMesh();
   for (const TetId t : changes->removed_tets) Accumulate(t, -1);
   for (const TetId t : changes->added_tets) Accumulate(t, +1);
+  // A vertex no tet uses any more (a temporary point of a progressive cut) has no mass or
+  // stiffness: exactly, not the rounding left by adding and taking away.
+  for (const TetId t : changes->removed_tets) {
+    for (const VertexId v : mesh_->tet_even_if_removed(t)) {
+      if (mesh_->IsAlive(v) && !mesh_->TetsAround(v).empty()) continue;
+      masses_[Index(v)] = 0;
+      vertex_tensors_[Index(v)].setZero();
+    }
+  }
   synced_ = mesh_->change_log().Mark();
   return absl::OkStatus();
 }

@@ -112,6 +112,7 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
   scene.mesh = *std::move(mesh);
   scene.method = spec.integration().method();
   scene.time_step = spec.integration().time_step();
+  scene.cut_mode = spec.cutting().mode();
   scene.needs = spec.needs();
   const kerf::v1::Material& m = spec.material();
   scene.material = {m.youngs_modulus(), m.poisson_ratio(), m.density(), m.mass_damping(),
@@ -121,6 +122,10 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
   }
   if (scene.method == kerf::v1::Integration::METHOD_UNSPECIFIED) {
     scene.method = kerf::v1::Integration::SYMPLECTIC_EULER;
+  }
+  if (!kerf::v1::Cutting::Mode_IsValid(scene.cut_mode)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("cutting.mode must be PROGRESSIVE or DEFERRED, got ", scene.cut_mode));
   }
   if (!std::isfinite(scene.time_step) || scene.time_step < 0) {
     return absl::InvalidArgumentError(absl::StrCat(

@@ -41,8 +41,10 @@ void Simulation::Step() {
 absl::Status Simulation::ApplyBladePose(const cut::BladePose& pose) {
   if (cutter_ == nullptr) {
     // The spatial index's cells are about an edge long.
-    absl::StatusOr<cut::Cutter> cutter =
-        cut::Cutter::Create(&scene_.mesh, mesh::MeanEdgeLength(scene_.mesh));
+    absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(
+        &scene_.mesh, mesh::MeanEdgeLength(scene_.mesh), {},
+        scene_.cut_mode == kerf::v1::Cutting::DEFERRED ? cut::CutMode::kDeferred
+                                                       : cut::CutMode::kProgressive);
     if (!cutter.ok()) return cutter.status();
     cutter_ = std::make_unique<cut::Cutter>(*std::move(cutter));
   } else if (absl::Status s = cutter_->MeshDeformed(); !s.ok()) {
