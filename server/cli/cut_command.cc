@@ -89,7 +89,9 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_tets_before(static_cast<std::uint32_t>(m->tet_count()));
   report.set_mode(options.mode == cut::CutMode::kProgressive ? "progressive" : "deferred");
   absl::StatusOr<cut::Cutter> cutter =
-      cut::Cutter::Create(m, mesh::MeanEdgeLength(*m), {}, options.mode);
+      cut::Cutter::Create(m, mesh::MeanEdgeLength(*m),
+                          LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()),
+                          options.mode);
   if (!cutter.ok()) return cutter.status();
   std::FILE* trace = nullptr;
   if (!options.trace_path.empty()) {

@@ -46,7 +46,9 @@ Eigen::Vector4d TetBarycentric(const Eigen::Vector3d& a, const Eigen::Vector3d& 
                                const Eigen::Vector3d& c, const Eigen::Vector3d& d,
                                const Eigen::Vector3d& p) {
   Eigen::Matrix3d m;
-  m << b - a, c - a, d - a;
+  m.col(0) = b - a;
+  m.col(1) = c - a;
+  m.col(2) = d - a;
   const Eigen::Vector3d l = m.partialPivLu().solve(p - a);
   return {1 - l.sum(), l[0], l[1], l[2]};
 }
@@ -133,9 +135,10 @@ TetId Cutter::OwnerOf(TetId t) const {
   return it == owner_.end() ? t : it->second;
 }
 
-bool Cutter::IsTemporaryVertex(VertexId v) const {
-  return std::any_of(temporary_points_.begin(), temporary_points_.end(),
-                     [&](const auto& entry) { return entry.second.vertex == v; });
+bool Cutter::IsOnBladeNow(VertexId v) const {
+  return std::any_of(temporary_points_.begin(), temporary_points_.end(), [&](const auto& entry) {
+    return entry.second.vertex == v && entry.second.on_blade;
+  });
 }
 
 std::vector<TetId> Cutter::TetsWith(std::span<const VertexId> vertices) const {
@@ -463,11 +466,11 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     std::vector<FaceKey> faces_given;
     absl::flat_hash_map<FaceKey, TemporaryPoint, FaceKeyHash> points;
     const auto temporary_point = [&](const FaceKey& place, const std::array<VertexId, 4>& from,
-                                     const Eigen::Vector4d& weights) {
+                                     const Eigen::Vector4d& weights, bool on_blade = true) {
       const auto it = points.find(place);
       if (it != points.end()) return it->second.vertex;
       const VertexId v = MakeVertex(from, weights);
-      points[place] = {v, weights};
+      points[place] = {v, weights, on_blade};
       return v;
     };
     std::vector<Plan> plans;
@@ -554,8 +557,8 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         // of its face points, which lies inside the tet.
         const Eigen::Vector4d middle = used_sum / static_cast<double>(used.size());
         if (middle.minCoeff() >= kTipMargin) {
-          split = SplitAsStar(corners, cuts, used, temporary_point(InsidePlace(t), corners, middle),
-                              rest);
+          split = SplitAsStar(corners, cuts, used,
+                              temporary_point(InsidePlace(t), corners, middle, false), rest);
         }
       }
       if (split.tets.empty()) {

@@ -108,8 +108,9 @@ class Cutter {
   const PoseSummary& last_pose() const { return last_pose_; }
   // Tets with hits not yet finally subdivided.
   std::size_t waiting_tets() const { return group_of_.size() + open_.size(); }
-  // Whether `v` is a temporary point (a temporary face point or the tip) of the current pose.
-  bool IsTemporaryVertex(mesh::VertexId v) const;
+  // Whether `v` is a temporary point of the current pose on the blade: a temporary face point,
+  // or the tip inside a tet.
+  bool IsOnBladeNow(mesh::VertexId v) const;
 
   // The tet of the mesh as it was when the cutter was created that `t` came from (t itself
   // if it was never cut).
@@ -151,6 +152,7 @@ class Cutter {
   struct TemporaryPoint {
     mesh::VertexId vertex;
     Eigen::Vector4d weights;  // on the face's vertices (key order) or the tet's corners
+    bool on_blade = true;     // false for the middle of a crack's face points
   };
 
   Cutter(mesh::TetMesh* mesh, TetGrid grid, const BladeLimits& limits, CutMode mode)
