@@ -25,7 +25,7 @@ namespace kerf::cli {
 namespace {
 
 constexpr absl::string_view kUsage =
-    "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--trace OUT.jsonl] "
+    "kerf cut MESH --path PATH.json --out OUT.vtu [--deferred|--progressive] [--trace OUT.jsonl] "
     "[--dump-every-pose DIR] [--json]";
 
 // The mesh of a scene (an embedded name or a .textproto file) in its initial state, or of a
@@ -88,10 +88,9 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_poses(static_cast<std::uint32_t>(poses.size()));
   report.set_tets_before(static_cast<std::uint32_t>(m->tet_count()));
   report.set_mode(options.mode == cut::CutMode::kProgressive ? "progressive" : "deferred");
-  absl::StatusOr<cut::Cutter> cutter =
-      cut::Cutter::Create(m, mesh::MeanEdgeLength(*m),
-                          LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()),
-                          options.mode);
+  absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(
+      m, mesh::MeanEdgeLength(*m),
+      LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()), options.mode);
   if (!cutter.ok()) return cutter.status();
   std::FILE* trace = nullptr;
   if (!options.trace_path.empty()) {
@@ -222,13 +221,13 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   CommandArgs rest(args);
   const bool json = rest.TakeFlag("--json");
   CutOptions options;
-  const bool progressive = rest.TakeFlag("--progressive");
-  if (rest.TakeFlag("--deferred")) {
-    if (progressive) {
+  const bool deferred = rest.TakeFlag("--deferred");
+  if (rest.TakeFlag("--progressive")) {
+    if (deferred) {
       return absl::InvalidArgumentError(
           absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
     }
-    options.mode = cut::CutMode::kDeferred;
+    options.mode = cut::CutMode::kProgressive;
   }
   for (auto [flag, into] :
        {std::pair<absl::string_view, std::string*>{"--trace", &options.trace_path},

@@ -62,7 +62,9 @@ absl::StatusOr<std::string> ProgressiveCases(bool json) {
   experiment.set_scene("a 6 x 2 x 2 cm lattice of 1 cm cubes, at rest");
   for (const cut::ScriptedPath& path : cut::ProgressiveCasePaths()) {
     mesh::TetMesh m = cut::ScriptedPathLattice();
-    absl::StatusOr<kerf::v1::CutReport> report = CutAlongPath(&m, path.poses, path.name);
+    CutOptions options;
+    options.mode = cut::CutMode::kProgressive;
+    absl::StatusOr<kerf::v1::CutReport> report = CutAlongPath(&m, path.poses, path.name, options);
     if (!report.ok()) return report.status();
     *experiment.add_cuts() = *std::move(report);
   }

@@ -135,6 +135,31 @@ TetId Cutter::OwnerOf(TetId t) const {
   return it == owner_.end() ? t : it->second;
 }
 
+bool Cutter::Realisable(std::span<const VertexId> vertices) const {
+  // A face of a tet still open that a final subdivision beside it has split already: the
+  // open tet would split it anew with the hit, its neighbour's pieces would not.
+  for (const auto& [t, open] : open_) {
+    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
+    for (const auto& f : mesh::kTetFaces) {
+      const FaceKey face = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+      const bool on_face = std::all_of(vertices.begin(), vertices.end(), [&](VertexId v) {
+        return std::find(face.begin(), face.end(), v) != face.end();
+      });
+      if (on_face && settled_faces_.contains(face)) return false;
+    }
+  }
+  const mesh::TetMesh::TetList live =
+      vertices.size() == 2 ? mesh_->TetsAroundEdge(vertices[0], vertices[1])
+                           : mesh_->TetsAroundFace(vertices[0], vertices[1], vertices[2]);
+  return std::all_of(live.begin(), live.end(), [&](TetId t) {
+    const TetId owner = OwnerOf(t);
+    if (owner == t) return true;
+    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(owner);
+    return std::all_of(vertices.begin(), vertices.end(),
+                       [&](VertexId v) { return mesh::TetHasVertex(corners, v); });
+  });
+}
+
 bool Cutter::IsOnBladeNow(VertexId v) const {
   return std::any_of(temporary_points_.begin(), temporary_points_.end(), [&](const auto& entry) {
     return entry.second.vertex == v && entry.second.on_blade;
@@ -197,6 +222,8 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
         if (!crossing) continue;
         if (crossing->t < kDegenerate || crossing->t > 1 - kDegenerate) {
           ++statistics_.degenerate_hits;
+        } else if (const std::array<VertexId, 2> ends = {lo, hi}; !Realisable(ends)) {
+          ++statistics_.unrealisable_hits;
         } else {
           edge_hits_[key] = {crossing->t};
           new_edges.push_back(key);
@@ -213,6 +240,8 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
       if (!crossing) continue;
       if (crossing->barycentric.minCoeff() < kDegenerate) {
         ++statistics_.degenerate_hits;
+      } else if (!Realisable(key)) {
+        ++statistics_.unrealisable_hits;
       } else {
         face_hits_[key] = {crossing->barycentric};
         new_faces.push_back(key);
@@ -476,9 +505,30 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     std::vector<Plan> plans;
     std::vector<TetId> failed_final;
     bool failed_temporary = false;
+    // Where the blade edge crosses each face, found once per face so both its tets agree.
+    absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>
+        crossing_of;
     for (const TetId t : tets) {
       const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
-      const bool inside = pose != nullptr && BladeInside(corners, *pose);
+      std::array<std::optional<geometry::SegmentTriangleCrossing>, 4> crossings;
+      bool inside = false;
+      if (pose != nullptr) {
+        for (int k = 0; k < 4; ++k) {
+          const auto& f = mesh::kTetFaces[k];
+          const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+          auto [it, fresh] = crossing_of.try_emplace(key);
+          if (fresh) {
+            it->second = geometry::IntersectSegmentTriangle(pose->tip, pose->heel, current(key[0]),
+                                                            current(key[1]), current(key[2]));
+          }
+          crossings[k] = it->second;
+          inside = inside || crossings[k].has_value();
+        }
+        std::array<Eigen::Vector3d, 4> x;
+        for (int k = 0; k < 4; ++k) x[k] = current(corners[k]);
+        inside = inside || geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->tip) ||
+                 geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->heel);
+      }
       const std::vector<EdgeCut> cuts = EdgeCutsOf(corners, &edges_given);
       // Face points that can open: on a face with a cut edge (a permanent one first).
       std::vector<FacePoint> used;
@@ -490,11 +540,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         const auto hit = face_hits_.find(key);
         face_hits += hit != face_hits_.end();
         std::optional<Eigen::Vector3d> crossing;
-        if (inside) {
-          const auto c = geometry::IntersectSegmentTriangle(pose->tip, pose->heel, current(key[0]),
-                                                            current(key[1]), current(key[2]));
-          temporary_faces += c.has_value();
-          if (c && c->barycentric.minCoeff() >= kDegenerate) crossing = c->barycentric;
+        if (const auto& c = crossings[k]; c) {
+          ++temporary_faces;
+          if (c->barycentric.minCoeff() >= kDegenerate) crossing = c->barycentric;
         }
         const bool cut_edge = edge_hits_.contains(MakeEdgeKey(key[0], key[1])) ||
                               edge_hits_.contains(MakeEdgeKey(key[1], key[2])) ||
@@ -510,7 +558,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           }
           used.push_back({k, hit->second.vertex});
           barycentric = hit->second.barycentric;
-        } else if (crossing) {
+        } else if (crossing && !settled_faces_.contains(key)) {
           const Eigen::Vector3d& b = *crossing;
           used.push_back(
               {k, temporary_point(key, {key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0})});
@@ -552,7 +600,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         plans.push_back({t, inside, table_case, {}});  // nothing can open: the tet stays
         continue;
       }
-      if (split.tets.empty() && inside && !used.empty()) {
+      if (split.tets.empty() && !used.empty()) {
         // A pattern the minimal cases do not cover (two cracks, say): a cone from the middle
         // of its face points, which lies inside the tet.
         const Eigen::Vector4d middle = used_sum / static_cast<double>(used.size());
@@ -701,6 +749,18 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         open.signature = std::move(signature);
         open.last_case = plan.table_case;
       } else {
+        // A point made inside it for good (the middle of its face points) stays.
+        for (const mesh::TetVertices& piece : plan.split.tets) {
+          for (const VertexId v : piece) {
+            if (!place_code.contains(v)) continue;
+            for (auto it = points.begin(); it != points.end(); ++it) {
+              if (it->second.vertex == v) {
+                points.erase(it);
+                break;
+              }
+            }
+          }
+        }
         ++statistics_.cut_tets;
         statistics_.new_tets += plan.split.tets.size();
         ++statistics_.tets_by_case[static_cast<int>(plan.split.cut_case)];
@@ -727,6 +787,16 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
 void Cutter::CloseOpenTet(TetId t) {
   const auto it = open_.find(t);
   if (it == open_.end()) return;
+  // Its faces with points are split for good.
+  const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
+  for (const auto& f : mesh::kTetFaces) {
+    const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+    if (face_hits_.contains(key) || edge_hits_.contains(MakeEdgeKey(key[0], key[1])) ||
+        edge_hits_.contains(MakeEdgeKey(key[1], key[2])) ||
+        edge_hits_.contains(MakeEdgeKey(key[0], key[2]))) {
+      settled_faces_.insert(key);
+    }
+  }
   for (const TetId piece : it->second.pieces) owner_.erase(piece);
   open_.erase(it);
 }

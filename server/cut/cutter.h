@@ -6,7 +6,7 @@
 // along the edge or barycentric coordinates on the face; the first crossing wins. New
 // vertices take their rest and current positions from the same coordinates.
 //
-// Progressive (the default): after every pose, each tet with hits is subdivided at once. While
+// Progressive: after every pose, each tet with hits is subdivided at once. While
 // the blade is in it, the subdivision is temporary: the points where the blade edge crosses
 // its faces (temporary face points) count as face points, and while the tip is inside, the
 // crack reaches the tip (a cone from it). Points on a face with no cut edge cannot open and are
@@ -18,10 +18,11 @@
 // a tet the blade left in such a pattern keeps its last temporary subdivision (frozen), so the
 // crack it made stays. Withdrawing the blade makes the temporary face points permanent.
 //
-// Deferred: the tets the blade has crossed are subdivided once it has left them. The tets
-// joined through cut edges and crossed faces form a group split in one step, when the blade has
-// left all of them (or at Finish). A group member whose pattern is none of the five cases has
-// its hits dropped, and the group is re-examined.
+// Deferred (the default, until a blade turning back over tets already finally subdivided keeps
+// every face conforming progressively): the tets the blade has crossed are subdivided once it has
+// left them. The tets joined through cut edges and crossed faces form a group split in one step,
+// when the blade has left all of them (or at Finish). A group member whose pattern is none of the
+// five cases has its hits dropped, and the group is re-examined.
 //
 // Either way the mesh stays valid and conforming after every pose: a cut edge becomes two
 // vertices in every tet around it at once, and a face is triangulated alike in both its tets.
@@ -67,6 +68,9 @@ struct CutStatistics {
   std::array<std::size_t, 7> tets_by_case{};  // cut tets by CutCase (index = enum value)
   std::size_t dropped_hits = 0;               // hits that could not be realised
   std::size_t degenerate_hits = 0;            // crossings too close to a vertex or edge, skipped
+  // Progressive: crossings of an edge or face that a tet the blade is in does not have among its
+  // own (made by a final subdivision beside it), skipped: it could not split them alike.
+  std::size_t unrealisable_hits = 0;
   // Progressive cutting, summed over poses.
   std::array<std::size_t, kProgressiveCases + 1> poses_by_case{};  // tet-poses by Table 1 case
   std::size_t rebuilt = 0;      // temporary subdivisions made anew (first, or case changed)
@@ -89,7 +93,7 @@ class Cutter {
   // (m) sets the grid; a mean edge length is a good choice. INVALID_ARGUMENT for a bad size.
   static absl::StatusOr<Cutter> Create(mesh::TetMesh* mesh, double cell_size,
                                        const BladeLimits& limits = {},
-                                       CutMode mode = CutMode::kProgressive);
+                                       CutMode mode = CutMode::kDeferred);
 
   // Applies one pose. INVALID_ARGUMENT (and nothing changed) for a bad pose. The first pose
   // only places the blade. Cost: the tets near the swept surface and the groups split.
@@ -167,6 +171,9 @@ class Cutter {
   }
   // The tet a live tet stands for: its open tet if it is a temporary piece, else itself.
   mesh::TetId OwnerOf(mesh::TetId t) const;
+  // Whether a hit on the edge (two vertices) or face (three) could be realised: every tet
+  // around it has it among its corners, or is a temporary piece whose open tet does.
+  bool Realisable(std::span<const mesh::VertexId> vertices) const;
   // The tets (as OwnerOf) with both vertices, or all three.
   std::vector<mesh::TetId> TetsWith(std::span<const mesh::VertexId> vertices) const;
   // Progressive: subdivides every open tet for the blade at `pose` (null: withdrawn).
@@ -206,6 +213,9 @@ class Cutter {
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;
   absl::flat_hash_map<FaceKey, TemporaryPoint, FaceKeyHash> temporary_points_;
+  // Faces of tets whose subdivision is final: a point added to one later (the blade coming
+  // back) would split it differently on its two sides, so none is.
+  absl::flat_hash_set<FaceKey, FaceKeyHash> settled_faces_;
   std::vector<MadeVertex> made_vertices_;
   CutStatistics statistics_;
   PoseSummary last_pose_;

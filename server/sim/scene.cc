@@ -125,7 +125,7 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
   }
   if (!kerf::v1::Cutting::Mode_IsValid(scene.cut_mode)) {
     return absl::InvalidArgumentError(
-        absl::StrCat("cutting.mode must be PROGRESSIVE or DEFERRED, got ", scene.cut_mode));
+        absl::StrCat("cutting.mode must be DEFERRED or PROGRESSIVE, got ", scene.cut_mode));
   }
   if (!std::isfinite(scene.time_step) || scene.time_step < 0) {
     return absl::InvalidArgumentError(absl::StrCat(

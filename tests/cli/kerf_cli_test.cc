@@ -166,6 +166,69 @@ TEST(KerfCli, CutWritesTheCutMeshWithItsSourcesAndReports) {
   EXPECT_EQ(ParseReport(info.output).components(), 2u);
 }
 
+// --progressive traces every pose (and the withdrawal) and dumps the mesh after each; the
+// opening keeps up with the blade, where --deferred lags by the whole cut.
+TEST(KerfCli, CutTracesAndDumpsEveryPoseProgressively) {
+  const std::string dir = ::testing::TempDir();
+  ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 6 2 2 --size 0.06 0.02 0.02 --out ", dir, "/bar.msh"))
+                .exit_code,
+            0);
+  std::string poses;
+  for (int k = 0; k <= 15; ++k) {
+    absl::StrAppend(&poses, k ? "," : "", "{\"time\": ", 0.01 * k, ", \"tip\": [0.0337, ",
+                    -0.005 + 0.002 * k, ", -0.005], \"heel\": [0.0337, ", -0.005 + 0.002 * k,
+                    ", 0.025]}");
+  }
+  std::ofstream(dir + "/sweep.json") << "{\"poses\": [" << poses << "]}";
+  kerf::v1::CutReport reports[2];
+  for (const bool progressive : {true, false}) {
+    const std::string mode = progressive ? "progressive" : "deferred";
+    const CliResult run = Kerf(absl::StrCat(
+        "cut ", dir, "/bar.msh --path ", dir, "/sweep.json --out ", dir, "/", mode, ".vtu --", mode,
+        " --trace ", dir, "/", mode, ".jsonl --dump-every-pose ", dir, "/", mode, "-poses --json"));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    kerf::v1::CutReport& report = reports[progressive ? 0 : 1];
+    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok());
+    EXPECT_EQ(report.mode(), mode);
+    EXPECT_EQ(report.invalid_poses(), 0u);
+    std::ifstream trace(absl::StrCat(dir, "/", mode, ".jsonl"));
+    int lines = 0;
+    for (std::string line; std::getline(trace, line); ++lines) {
+      EXPECT_THAT(line, HasSubstr("\"valid\":true")) << line;
+      EXPECT_THAT(line, HasSubstr(absl::StrCat("{\"pose\":", lines, ",")));
+    }
+    EXPECT_EQ(lines, 17);  // 16 poses and the withdrawal
+    for (const char* file : {"/pose-0000.vtu", "/pose-0015.vtu", "/withdrawn.vtu"}) {
+      EXPECT_EQ(Kerf(absl::StrCat("mesh info ", dir, "/", mode, "-poses", file)).exit_code, 0)
+          << file;
+    }
+  }
+  EXPECT_EQ(reports[0].max_lag_steps(), 0u);
+  EXPECT_GT(reports[0].poses_by_case(3) + reports[0].poses_by_case(6), 0u);
+  EXPECT_GE(reports[1].max_lag_steps(), 10u);
+  EXPECT_EQ(reports[0].tets_after(), reports[1].tets_after());
+  EXPECT_THAT(Kerf(absl::StrCat("cut ", dir, "/bar.msh --path ", dir, "/sweep.json --out ", dir,
+                                "/x.vtu --progressive --deferred"))
+                  .output,
+              HasSubstr("--progressive and --deferred exclude each other"));
+}
+
+TEST(KerfCli, ProgressiveCasesExperimentReachesEveryCase) {
+  const CliResult run = Kerf("experiment progressive-cases --json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  kerf::v1::CutExperiment experiment;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
+  for (int k = 1; k <= 11; ++k) {
+    std::uint32_t reached = 0;
+    for (const kerf::v1::CutReport& r : experiment.cuts()) reached += r.poses_by_case(k);
+    EXPECT_GT(reached, 0u) << "case " << k;
+  }
+  for (const kerf::v1::CutReport& r : experiment.cuts()) {
+    EXPECT_EQ(r.invalid_poses(), 0u) << r.path();
+    EXPECT_TRUE(r.valid()) << r.path();
+  }
+}
+
 TEST(KerfCli, CutRefusesABadPathNamingThePose) {
   const std::string dir = ::testing::TempDir();
   ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 2 2 2 --out ", dir, "/small.msh")).exit_code, 0);

@@ -13,6 +13,7 @@
 #include "mesh/boundary_surface.h"
 #include "mesh/box_lattice.h"
 #include "mesh/connected_components.h"
+#include "mesh/cut_surface.h"
 #include "mesh/io/mesh_file.h"
 #include "mesh/mesh_quality.h"
 #include "mesh/mesh_validation.h"
@@ -223,7 +224,7 @@ namespace kerf::cut {
 namespace {
 
 struct RandomCutTotals {
-  std::size_t poses = 0, cut_tets = 0, dropped = 0;
+  std::size_t poses = 0, cut_tets = 0, dropped = 0, held = 0;
 };
 
 // Random blades wandering through `make_mesh()`'s mesh (of about `size` across, starting
@@ -231,7 +232,8 @@ struct RandomCutTotals {
 // its volume after every pose.
 RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
                                const Eigen::Vector3d& low, double size, int paths, int poses,
-                               std::uint32_t seed) {
+                               std::uint32_t seed, CutMode mode = CutMode::kDeferred,
+                               bool reversals = true) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0, 1);
   BladeLimits limits;
@@ -242,7 +244,8 @@ RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
   for (int path = 0; path < paths; ++path) {
     TetMesh m = make_mesh();
     const double volume = RestVolume(m);
-    Cutter cutter = *Cutter::Create(&m, 0.15 * size, limits);
+    const double surface = mesh::MeasureCutSurface(m).surface_area;
+    Cutter cutter = *Cutter::Create(&m, 0.15 * size, limits, mode);
     // A blade a quarter to half the mesh's size, pointing roughly downward.
     Eigen::Vector3d tip = low + size * Eigen::Vector3d(unit(random), unit(random), unit(random));
     Eigen::Vector3d along(unit(random) - 0.5, unit(random) - 0.5, 1.5);
@@ -252,15 +255,19 @@ RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
     for (int k = 0; k < poses; ++k, ++totals.poses) {
       EXPECT_TRUE(cutter.ApplyPose({time, tip, heel}).ok());
       const std::vector<mesh::MeshDefect> defects = mesh::FindMeshDefects(m);
-      if (!defects.empty() || std::abs(RestVolume(m) - volume) > 1e-12 * volume) {
+      // Conforming, no face overlapping another: the surface off the crack is the original one.
+      const double cut_surface = mesh::MeasureCutSurface(m).surface_area;
+      if (!defects.empty() || std::abs(RestVolume(m) - volume) > 1e-12 * volume ||
+          std::abs(cut_surface - surface) > 1e-9 * surface) {
         ADD_FAILURE() << "path " << path << " pose " << k << ": " << mesh::ValidateMesh(m)
-                      << ", volume " << RestVolume(m) << " of " << volume;
+                      << ", volume " << RestVolume(m) << " of " << volume << ", surface "
+                      << cut_surface << " of " << surface;
         return totals;
       }
       time += 0.01;
       const double what = unit(random);
-      if (what < 0.1) continue;              // hesitate
-      if (what < 0.2) velocity = -velocity;  // reverse
+      if (what < 0.1) continue;                           // hesitate
+      if (what < 0.2 && reversals) velocity = -velocity;  // reverse
       if (what < 0.3) velocity += Eigen::Vector3d(unit(random) - 0.5, unit(random) - 0.5, 0);
       const Eigen::Vector3d step = 0.025 * size * velocity.normalized();
       tip += step;
@@ -270,6 +277,9 @@ RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
     EXPECT_TRUE(mesh::FindMeshDefects(m).empty())
         << "path " << path << ": " << mesh::ValidateMesh(m);
     EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    EXPECT_NEAR(mesh::MeasureCutSurface(m).surface_area, surface, 1e-9 * surface);
+    EXPECT_EQ(cutter.waiting_tets(), 0u);
+    totals.held += cutter.statistics().held_poses;
     totals.cut_tets += cutter.statistics().cut_tets;
     totals.dropped += cutter.statistics().dropped_hits;
   }
@@ -280,8 +290,22 @@ TEST(Cutter, RandomPathsThroughTheLatticeKeepEveryPropertyAfterEveryPose) {
   // 200 paths of 50 poses: 10^4 poses.
   const RandomCutTotals totals =
       RunRandomPaths(Bar, Eigen::Vector3d(0, -0.005, 0), 0.06, 200, 50, 17);
-  std::printf("random paths, lattice: %zu poses, %zu tets cut, %zu hits dropped\n", totals.poses,
-              totals.cut_tets, totals.dropped);
+  std::printf("random paths, lattice, deferred: %zu poses, %zu tets cut, %zu hits dropped\n",
+              totals.poses, totals.cut_tets, totals.dropped);
+  EXPECT_EQ(totals.poses, 10000u);
+  EXPECT_GT(totals.cut_tets, 0u);
+}
+
+// Progressive cutting along random paths that wander, tilt and hesitate but do not turn back:
+// 10^4 poses. (Turning back over tets already finally subdivided still leaves, in about one
+// path in sixty, a face split differently on its two sides: issue 5 is open for that.)
+TEST(Cutter, RandomForwardPathsCutProgressivelyKeepEveryPropertyAfterEveryPose) {
+  const RandomCutTotals totals = RunRandomPaths(Bar, Eigen::Vector3d(0, -0.005, 0), 0.06, 200, 50,
+                                                17, CutMode::kProgressive, /*reversals=*/false);
+  std::printf(
+      "random forward paths, lattice, progressive: %zu poses, %zu tets cut, %zu hits "
+      "dropped, %zu poses held\n",
+      totals.poses, totals.cut_tets, totals.dropped, totals.held);
   EXPECT_EQ(totals.poses, 10000u);
   EXPECT_GT(totals.cut_tets, 0u);
 }

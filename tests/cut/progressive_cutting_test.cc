@@ -162,8 +162,8 @@ TEST(ProgressiveCutting, TheOpeningKeepsUpWithTheBlade) {
     if (mode == CutMode::kProgressive) {
       EXPECT_LE(most_steps, 1);  // one pose held where the blade meets vertices exactly
     } else {
-      EXPECT_GE(most_steps, 20);                // the whole cut waits for the blade to leave
-      EXPECT_GT(largest, 0.5 * 0.02 * 0.02);    // over half the bar's cross-section
+      EXPECT_GE(most_steps, 20);              // the whole cut waits for the blade to leave
+      EXPECT_GT(largest, 0.5 * 0.02 * 0.02);  // over half the bar's cross-section
     }
   }
 }

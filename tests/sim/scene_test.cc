@@ -64,7 +64,7 @@ TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
        "scene 'lattice-tension': integration.time_step must be positive (s), or 0 to choose, got "
        "-1"},
       {Tension() + "cutting { mode: 7 }\n",
-       "scene 'lattice-tension': cutting.mode must be PROGRESSIVE or DEFERRED, got 7"},
+       "scene 'lattice-tension': cutting.mode must be DEFERRED or PROGRESSIVE, got 7"},
       {Tension() + "loads { vertices { ids { ids: 9999 } } total_force { x: 1 } }\n",
        "scene 'lattice-tension': loads[0].vertices.ids: no vertex 9999"},
       {absl::StrReplaceAll(Tension(),
