@@ -114,10 +114,44 @@ void BM_FinalSubdivision(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(cut));
 }
 
+// Progressive cutting: one pose with the blade inside about k tets. A vertical blade through
+// the whole depth of a 1 x 1 x n stack of 1 cm cubes (n = the argument) trembles by 0.1 mm
+// inside the first column after cutting into it, so every pose moves or rebuilds the
+// temporary subdivisions of the tets it is in (the counter k, measured); the mesh is small, so
+// the cost is the progressive update's alone.
+void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
+  mesh::BoxLatticeSpec spec;
+  spec.cells_x = 2;
+  spec.cells_y = 2;
+  spec.cells_z = static_cast<int>(state.range(0));
+  spec.size = Eigen::Vector3d(0.02, 0.02, 0.01 * spec.cells_z);
+  mesh::TetMesh m = *mesh::MakeBoxLattice(spec);
+  BladeLimits limits;
+  limits.max_length = 1;
+  limits.max_speed = 1e9;
+  Cutter cutter = *Cutter::Create(&m, 0.01, limits, CutMode::kProgressive);
+  const double depth = 0.01 * spec.cells_z;
+  const auto blade_at = [&](int k, double y) {
+    const Eigen::Vector3d tip(0.0063, y, -0.005);
+    return BladePose{0.01 * k, tip, tip + Eigen::Vector3d(0.0011, 0, depth + 0.01)};
+  };
+  int k = 0;
+  for (double y = -0.005; y < 0.0047; y += 0.001) (void)cutter.ApplyPose(blade_at(k++, y));
+  std::size_t inside = 0;
+  for (auto _ : state) {
+    (void)cutter.ApplyPose(blade_at(k, 0.0047 + 0.0001 * (k % 2)));
+    ++k;
+    inside = cutter.last_pose().open_tets;
+  }
+  state.counters["k"] = static_cast<double>(inside);
+  state.counters["temporary_tets"] = static_cast<double>(cutter.last_pose().temporary_tets);
+}
+
 BENCHMARK(BM_PoseInsideACut)
     ->ArgsProduct({{10000, 1000000}, {0, 1}})
     ->ArgNames({"tets", "cold"})
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ProgressivePoseInsideKTets)->DenseRange(1, 8)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FinalSubdivision)
     ->Arg(10000)
     ->Arg(100000)
