@@ -81,8 +81,7 @@ cut::BladeLimits LimitsForMeshSize(double diagonal) {
 absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
                                                  const std::vector<cut::BladePose>& poses,
                                                  absl::string_view path_name,
-                                                 const CutOptions& options,
-                                                 std::vector<mesh::TetId>* source_tets) {
+                                                 const CutOptions& options) {
   kerf::v1::CutReport report;
   report.set_path(std::string(path_name));
   report.set_poses(static_cast<std::uint32_t>(poses.size()));
@@ -122,7 +121,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
     if (!valid) report.set_invalid_poses(report.invalid_poses() + 1);
     cut::PoseLag lag;
     if (!withdrawn) {
-      lag = lag_meter.Measure(poses[i], *m);
+      lag = lag_meter.Measure(poses[i], cut_surface.crack_area);
       lag_sum += lag.lag_area;
       report.set_max_lag_area(std::max(report.max_lag_area(), lag.lag_area));
       report.set_max_lag_distance(std::max(report.max_lag_distance(), lag.lag_distance));
@@ -171,6 +170,9 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
     cutter->Finish();
     status = after_pose(poses.size());
   }
+  if (status.ok() && !options.out_path.empty()) {
+    status = mesh::WriteTextFile(options.out_path, CutMeshVtu(*m, *cutter, original_vertices));
+  }
   if (trace != nullptr) std::fclose(trace);
   if (!status.ok()) return status;
   report.set_mean_lag_area(poses.empty() ? 0 : lag_sum / static_cast<double>(poses.size()));
@@ -197,10 +199,6 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   std::uint32_t slivers = 0;
   bool any = false;
   for (const mesh::TetId t : m->tets()) {
-    if (source_tets != nullptr) {
-      if (source_tets->size() <= mesh::Index(t)) source_tets->resize(mesh::Index(t) + 1);
-      (*source_tets)[mesh::Index(t)] = cutter->SourceTet(t);
-    }
     if (!cutter->MadeByCut(t)) continue;
     const mesh::TetVertices& v = m->tet(t);
     const geometry::TetMeasures q =
@@ -257,26 +255,9 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
       *path_text, path_file,
       LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()));
   if (!poses.ok()) return poses.status();
-  const std::uint32_t original_vertices = m->vertex_index_bound();
-  std::vector<mesh::TetId> source_tets;
-  absl::StatusOr<kerf::v1::CutReport> report =
-      CutAlongPath(&*m, *poses, path_file, options, &source_tets);
+  options.out_path = std::string((**out_arg)[0]);
+  absl::StatusOr<kerf::v1::CutReport> report = CutAlongPath(&*m, *poses, path_file, options);
   if (!report.ok()) return report.status();
-
-  mesh::VtuExtraArrays extra;
-  std::vector<std::int64_t> source_vertex;
-  for (const mesh::VertexId v : m->vertices()) {
-    source_vertex.push_back(mesh::Index(v) < original_vertices ? mesh::Index(v) : -1);
-  }
-  std::vector<std::int64_t> source_tet;
-  for (const mesh::TetId t : m->tets())
-    source_tet.push_back(mesh::Index(source_tets[mesh::Index(t)]));
-  extra.point_data.push_back(mesh::RestPositionArray(*m));
-  extra.point_data.push_back({"source_vertex", 1, std::move(source_vertex)});
-  extra.cell_data.push_back({"source_tet", 1, std::move(source_tet)});
-  if (absl::Status s = mesh::WriteTextFile((**out_arg)[0], mesh::FormatVtu(*m, extra)); !s.ok()) {
-    return s;
-  }
   if (json) return FormatProtoJson(*report);
   return absl::StrCat(report->mode(), ": cut ", report->cut_tets(), " of ", report->tets_before(),
                       " tets into ", report->new_tets(), " (", report->new_per_cut(),

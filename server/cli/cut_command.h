@@ -23,6 +23,9 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
 
 struct CutOptions {
   cut::CutMode mode = cut::CutMode::kDeferred;
+  // Non-empty: the cut mesh as VTU (current positions as points; the arrays rest_position,
+  // source_vertex and source_tet).
+  std::string out_path;
   // Non-empty: one JSON line per pose (and one after the blade is withdrawn): the Table 1
   // cases of the tets the blade is in, tets alive, valid, and the lag (cut::LagMeter).
   std::string trace_path;
@@ -37,8 +40,7 @@ struct CutOptions {
 absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* mesh,
                                                  const std::vector<cut::BladePose>& poses,
                                                  absl::string_view path_name,
-                                                 const CutOptions& options = {},
-                                                 std::vector<mesh::TetId>* source_tets = nullptr);
+                                                 const CutOptions& options = {});
 
 // The blade limits for a mesh of this size (bounding-box diagonal, in its length unit).
 cut::BladeLimits LimitsForMeshSize(double diagonal);

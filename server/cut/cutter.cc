@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cassert>
+#include <functional>
 #include <numeric>
 #include <utility>
 
@@ -51,6 +52,19 @@ Eigen::Vector4d TetBarycentric(const Eigen::Vector3d& a, const Eigen::Vector3d& 
   m.col(2) = d - a;
   const Eigen::Vector3d l = m.partialPivLu().solve(p - a);
   return {1 - l.sum(), l[0], l[1], l[2]};
+}
+
+// Whether the tet has every one of `vertices` as a corner.
+bool HasAll(const mesh::TetVertices& corners, std::span<const VertexId> vertices) {
+  return std::all_of(vertices.begin(), vertices.end(),
+                     [&](VertexId v) { return mesh::TetHasVertex(corners, v); });
+}
+
+// The live tets around an edge (two vertices) or a face (three).
+mesh::TetMesh::TetList LiveTetsAround(const mesh::TetMesh& mesh,
+                                      std::span<const VertexId> vertices) {
+  return vertices.size() == 2 ? mesh.TetsAroundEdge(vertices[0], vertices[1])
+                              : mesh.TetsAroundFace(vertices[0], vertices[1], vertices[2]);
 }
 
 // A tip closer than this (barycentric) to a face of its tet is taken as on the face: the cone
@@ -113,18 +127,9 @@ void Cutter::Finish() {
   if (mode_ == CutMode::kDeferred) {
     SplitReadyGroups(nullptr, nullptr);
   } else {
-    // The crack stays where the blade left it: its temporary face points become permanent.
-    for (const auto& [key, point] : temporary_points_) {
-      if (key[0] == key[1]) continue;  // the tip
-      face_hits_[key] = {point.weights.head<3>(), point.vertex};
-    }
-    for (auto it = temporary_points_.begin(); it != temporary_points_.end();) {
-      if (it->first[0] != it->first[1]) {
-        temporary_points_.erase(it++);
-      } else {
-        ++it;
-      }
-    }
+    // The crack stays where the blade left it: its temporary face points become permanent
+    // (the tip's point goes with the temporary tets).
+    MakePermanent([](const FaceKey& place, VertexId) { return place[0] != place[1]; });
     UpdateOpenTets(nullptr);
   }
   previous_.reset();
@@ -148,15 +153,10 @@ bool Cutter::Realisable(std::span<const VertexId> vertices) const {
       if (on_face && settled_faces_.contains(face)) return false;
     }
   }
-  const mesh::TetMesh::TetList live =
-      vertices.size() == 2 ? mesh_->TetsAroundEdge(vertices[0], vertices[1])
-                           : mesh_->TetsAroundFace(vertices[0], vertices[1], vertices[2]);
+  const mesh::TetMesh::TetList live = LiveTetsAround(*mesh_, vertices);
   return std::all_of(live.begin(), live.end(), [&](TetId t) {
     const TetId owner = OwnerOf(t);
-    if (owner == t) return true;
-    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(owner);
-    return std::all_of(vertices.begin(), vertices.end(),
-                       [&](VertexId v) { return mesh::TetHasVertex(corners, v); });
+    return owner == t || HasAll(mesh_->tet_even_if_removed(owner), vertices);
   });
 }
 
@@ -167,18 +167,11 @@ bool Cutter::IsOnBladeNow(VertexId v) const {
 }
 
 std::vector<TetId> Cutter::TetsWith(std::span<const VertexId> vertices) const {
-  const mesh::TetMesh::TetList live =
-      vertices.size() == 2 ? mesh_->TetsAroundEdge(vertices[0], vertices[1])
-                           : mesh_->TetsAroundFace(vertices[0], vertices[1], vertices[2]);
   std::vector<TetId> tets;
-  for (const TetId t : live) tets.push_back(OwnerOf(t));
+  for (const TetId t : LiveTetsAround(*mesh_, vertices)) tets.push_back(OwnerOf(t));
   // An open tet whose pieces split the edge or face has no piece with all of them.
   for (const auto& [t, open] : open_) {
-    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
-    if (std::all_of(vertices.begin(), vertices.end(),
-                    [&](VertexId v) { return mesh::TetHasVertex(corners, v); })) {
-      tets.push_back(t);
-    }
+    if (HasAll(mesh_->tet_even_if_removed(t), vertices)) tets.push_back(t);
   }
   std::sort(tets.begin(), tets.end());
   tets.erase(std::unique(tets.begin(), tets.end()), tets.end());
@@ -644,20 +637,11 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
         if (!open.pieces.empty()) {
           // Frozen: its temporary points become permanent, so its neighbours keep them.
-          for (auto it = temporary_points_.begin(); it != temporary_points_.end();) {
-            const bool in_piece =
-                std::any_of(open.pieces.begin(), open.pieces.end(), [&](TetId piece) {
-                  return mesh::TetHasVertex(mesh_->tet(piece), it->second.vertex);
-                });
-            if (!in_piece) {
-              ++it;
-              continue;
-            }
-            if (it->first[0] != it->first[1]) {
-              face_hits_[it->first] = {it->second.weights.head<3>(), it->second.vertex};
-            }
-            temporary_points_.erase(it++);
-          }
+          MakePermanent([&](const FaceKey&, VertexId v) {
+            return std::any_of(open.pieces.begin(), open.pieces.end(), [&](TetId piece) {
+              return mesh::TetHasVertex(mesh_->tet(piece), v);
+            });
+          });
           ++statistics_.frozen_tets;
         } else {
           // Never subdivided: its hits were never used; drop them.
@@ -747,18 +731,17 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         ++(moved ? statistics_.moved : statistics_.rebuilt);
         open.pieces = std::move(kept);
         open.signature = std::move(signature);
-        open.last_case = plan.table_case;
       } else {
         // A point made inside it for good (the middle of its face points) stays.
-        for (const mesh::TetVertices& piece : plan.split.tets) {
-          for (const VertexId v : piece) {
-            if (!place_code.contains(v)) continue;
-            for (auto it = points.begin(); it != points.end(); ++it) {
-              if (it->second.vertex == v) {
-                points.erase(it);
-                break;
-              }
-            }
+        for (auto it = points.begin(); it != points.end();) {
+          const VertexId v = it->second.vertex;
+          const bool used = std::any_of(
+              plan.split.tets.begin(), plan.split.tets.end(),
+              [&](const mesh::TetVertices& piece) { return mesh::TetHasVertex(piece, v); });
+          if (used) {
+            points.erase(it++);
+          } else {
+            ++it;
           }
         }
         ++statistics_.cut_tets;
@@ -784,6 +767,18 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
   for (const auto& [t, open] : open_) last_pose_.temporary_tets += open.pieces.size();
 }
 
+void Cutter::MakePermanent(const std::function<bool(const FaceKey&, VertexId)>& which) {
+  for (auto it = temporary_points_.begin(); it != temporary_points_.end();) {
+    const auto& [place, point] = *it;
+    if (!which(place, point.vertex)) {
+      ++it;
+      continue;
+    }
+    if (place[0] != place[1]) face_hits_[place] = {point.weights.head<3>(), point.vertex};
+    temporary_points_.erase(it++);
+  }
+}
+
 void Cutter::CloseOpenTet(TetId t) {
   const auto it = open_.find(t);
   if (it == open_.end()) return;
@@ -804,9 +799,8 @@ void Cutter::CloseOpenTet(TetId t) {
 void Cutter::ForgetHitsOf(const mesh::TetVertices& corners) {
   const auto open_has = [&](std::initializer_list<VertexId> vertices) {
     return std::any_of(open_.begin(), open_.end(), [&](const auto& entry) {
-      const mesh::TetVertices& c = mesh_->tet_even_if_removed(entry.first);
-      return std::all_of(vertices.begin(), vertices.end(),
-                         [&](VertexId v) { return mesh::TetHasVertex(c, v); });
+      return HasAll(mesh_->tet_even_if_removed(entry.first),
+                    std::span<const VertexId>(vertices.begin(), vertices.size()));
     });
   };
   for (const auto& [i, j] : mesh::kTetEdges) {

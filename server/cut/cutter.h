@@ -30,6 +30,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -150,7 +151,6 @@ class Cutter {
     std::vector<mesh::TetId> pieces;  // live tets replacing it; empty: it is itself in the mesh
     // The pieces' corners with temporary points named by place (see Signature).
     std::vector<std::array<std::uint64_t, 4>> signature;
-    int last_case = -1;
   };
   // A temporary point of the applied subdivisions.
   struct TemporaryPoint {
@@ -178,6 +178,9 @@ class Cutter {
   std::vector<mesh::TetId> TetsWith(std::span<const mesh::VertexId> vertices) const;
   // Progressive: subdivides every open tet for the blade at `pose` (null: withdrawn).
   void UpdateOpenTets(const BladePose* pose);
+  // Makes the temporary points `which` picks (by place and vertex) permanent: a face point
+  // becomes that face's hit, a point inside a tet an ordinary vertex.
+  void MakePermanent(const std::function<bool(const FaceKey&, mesh::VertexId)>& which);
   // Ends an open tet's life as such, keeping what stands for it now.
   void CloseOpenTet(mesh::TetId t);
   // Forgets the hits of `corners` that no open tet has any more.

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "mesh/cut_surface.h"
-
 namespace kerf::cut {
 namespace {
 
@@ -69,7 +67,7 @@ double LagMeter::AreaInside(const std::array<Eigen::Vector3d, 3>& triangle) cons
   return area;
 }
 
-PoseLag LagMeter::Measure(const BladePose& pose, const mesh::TetMesh& cut) {
+PoseLag LagMeter::Measure(const BladePose& pose, double open_area) {
   double swept = swept_.empty() ? 0 : swept_.back();
   double travel = travel_.empty() ? 0 : travel_.back();
   if (previous_) {
@@ -82,7 +80,7 @@ PoseLag LagMeter::Measure(const BladePose& pose, const mesh::TetMesh& cut) {
   travel_.push_back(travel);
   PoseLag lag;
   lag.swept_area = swept;
-  lag.open_area = mesh::MeasureCutSurface(cut).crack_area;
+  lag.open_area = open_area;
   lag.lag_area = std::max(0.0, swept - lag.open_area);
   // The last pose whose swept surface is all open (swept areas only grow), up to a quarter of
   // the largest step: the crack is flat in each tet, the swept surface of a turning blade is not.

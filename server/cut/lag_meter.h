@@ -4,8 +4,8 @@
 // (each tet's crack is flat, the swept surface of a turning blade is not).
 //
 // The swept surface is the two triangles per step (cutting.md), clipped to the tissue before
-// the cut; the opening is the crack of the cut mesh (MeasureCutSurface). Both on the positions
-// the blade's path is given in (a mesh at rest, as `kerf cut` cuts it).
+// the cut; the opening is the crack of the cut mesh (mesh::MeasureCutSurface). Both on the
+// positions the blade's path is given in (a mesh at rest, as `kerf cut` cuts it).
 #pragma once
 
 #include <Eigen/Core>
@@ -32,8 +32,9 @@ class LagMeter {
   // `tissue` is the mesh before the cut.
   explicit LagMeter(const mesh::TetMesh& tissue);
 
-  // Call after each pose was applied to `cut`. O(tets).
-  PoseLag Measure(const BladePose& pose, const mesh::TetMesh& cut);
+  // Call after each pose was applied, with the crack open in the cut mesh then
+  // (mesh::MeasureCutSurface(cut).crack_area, m^2). O(tets of the tissue).
+  PoseLag Measure(const BladePose& pose, double open_area);
 
  private:
   // The area of the triangle inside the tissue.

@@ -10,8 +10,8 @@
 #include <limits>
 #include <random>
 
+#include "cut/progressive_case_paths.h"
 #include "mesh/boundary_surface.h"
-#include "mesh/box_lattice.h"
 #include "mesh/connected_components.h"
 #include "mesh/cut_surface.h"
 #include "mesh/io/mesh_file.h"
@@ -28,14 +28,7 @@ using mesh::TetMesh;
 using mesh::VertexId;
 
 // A 6 x 2 x 2 cm bar of 6 x 2 x 2 cubes.
-TetMesh Bar() {
-  mesh::BoxLatticeSpec spec;
-  spec.cells_x = 6;
-  spec.cells_y = 2;
-  spec.cells_z = 2;
-  spec.size = {0.06, 0.02, 0.02};
-  return *mesh::MakeBoxLattice(spec);
-}
+TetMesh Bar() { return ScriptedPathLattice(); }
 
 double RestVolume(const TetMesh& m) {
   double volume = 0;

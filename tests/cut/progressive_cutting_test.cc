@@ -155,7 +155,7 @@ TEST(ProgressiveCutting, TheOpeningKeepsUpWithTheBlade) {
     double largest = 0;
     for (const BladePose& pose : path.poses) {
       ASSERT_TRUE(cutter.ApplyPose(pose).ok());
-      const PoseLag lag = meter.Measure(pose, m);
+      const PoseLag lag = meter.Measure(pose, mesh::MeasureCutSurface(m).crack_area);
       most_steps = std::max(most_steps, lag.lag_steps);
       largest = std::max(largest, lag.lag_area);
     }
