@@ -15,6 +15,7 @@
 #include "geometry/tet_measures.h"
 #include "mesh/connected_components.h"
 #include "mesh/cut_surface.h"
+#include "mesh/face_tiling.h"
 #include "mesh/io/mesh_file.h"
 #include "mesh/io/vtu_writer.h"
 #include "mesh/mesh_quality.h"
@@ -108,7 +109,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   }
   const std::uint32_t original_vertices = m->vertex_index_bound();
   const double volume = TotalRestVolume(*m);
-  const double surface = mesh::MeasureCutSurface(*m).surface_area;
+  const mesh::TetMesh uncut = *m;
   cut::LagMeter lag_meter(*m);
   double lag_sum = 0;
   // Checks, measures, traces and dumps the mesh after pose `i` (poses.size(): withdrawn).
@@ -117,7 +118,9 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
     const mesh::CutSurface cut_surface = mesh::MeasureCutSurface(*m);
     const bool valid = mesh::FindMeshDefects(*m).empty() &&
                        std::abs(TotalRestVolume(*m) - volume) <= 1e-12 * volume &&
-                       std::abs(cut_surface.surface_area - surface) <= 1e-9 * surface;
+                       mesh::CheckOriginalFacesTiled(uncut, *m, [&](mesh::TetId t) {
+                         return cutter->SourceTet(t);
+                       }).ok();
     if (!valid) report.set_invalid_poses(report.invalid_poses() + 1);
     cut::PoseLag lag;
     if (!withdrawn) {

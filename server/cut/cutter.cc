@@ -1,5 +1,6 @@
 #include "cut/cutter.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cassert>
@@ -70,6 +71,54 @@ mesh::TetMesh::TetList LiveTetsAround(const mesh::TetMesh& mesh,
 // A tip closer than this (barycentric) to a face of its tet is taken as on the face: the cone
 // from it would make slivers.
 constexpr double kTipMargin = 1e-3;
+
+// A temporary tet lower than this fraction of the smallest height of the tet it stands in for
+// is not made (the tet keeps its previous subdivision until the blade has moved on): the
+// explicit model's stable step shrinks with the smallest height, and a blade just past an edge
+// or face would make tets as thin as its last step.
+constexpr double kMinTemporaryHeight = 0.02;
+
+// The tet's smallest height (rest positions): three times its volume over its largest face.
+double SmallestHeight(const mesh::TetVertices& t,
+                      const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  const double volume =
+      std::abs(geometry::SignedVolume(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])));
+  double largest_face = 0;
+  for (const auto& f : mesh::kTetFaces) {
+    largest_face =
+        std::max(largest_face,
+                 0.5 * (rest(t[f[1]]) - rest(t[f[0]])).cross(rest(t[f[2]]) - rest(t[f[0]])).norm());
+  }
+  return largest_face > 0 ? 3 * volume / largest_face : 0;
+}
+
+using Triangle = std::array<VertexId, 3>;
+
+// The faces of `pieces` (sorted vertex ids) that lie on face k of the tet `corners`, by rest
+// positions: every vertex within a billionth of the tet's height of the face's plane.
+std::vector<Triangle> TrianglesOnFace(const mesh::TetVertices& corners, int k,
+                                      std::span<const mesh::TetVertices> pieces,
+                                      const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  const auto& f = mesh::kTetFaces[k];
+  const Eigen::Vector3d origin = rest(corners[f[0]]);
+  const Eigen::Vector3d normal = (rest(corners[f[1]]) - origin).cross(rest(corners[f[2]]) - origin);
+  const double height = normal.dot(rest(corners[k]) - origin);
+  const auto on_face = [&](VertexId v) {
+    return std::abs(normal.dot(rest(v) - origin)) <= 1e-9 * std::abs(height);
+  };
+  std::vector<Triangle> triangles;
+  for (const mesh::TetVertices& piece : pieces) {
+    std::array<bool, 4> on;
+    for (int m = 0; m < 4; ++m) on[m] = on_face(piece[m]);
+    if (std::count(on.begin(), on.end(), true) != 3) continue;
+    const int off = static_cast<int>(std::find(on.begin(), on.end(), false) - on.begin());
+    Triangle t = {piece[(off + 1) % 4], piece[(off + 2) % 4], piece[(off + 3) % 4]};
+    std::sort(t.begin(), t.end());
+    triangles.push_back(t);
+  }
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
 
 }  // namespace
 
@@ -301,11 +350,21 @@ bool Cutter::BladeInside(const mesh::TetVertices& v, const BladePose& pose) cons
   return false;
 }
 
-std::vector<TetId> Cutter::TetsHoldingBlade(const BladePose& pose) const {
+std::vector<mesh::TetVertices> Cutter::TetsHoldingBlade(const BladePose& pose) const {
   std::vector<TetId> near =
       grid_.Candidates(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel));
-  std::erase_if(near, [&](TetId t) { return !mesh_->IsAlive(t) || !BladeInside(t, pose); });
-  return near;
+  // The grid learns of the tets the last pose made at the next; the open tets stand for theirs.
+  std::erase_if(near, [&](TetId t) { return !mesh_->IsAlive(t); });
+  for (TetId& t : near) t = OwnerOf(t);
+  for (const auto& entry : open_) near.push_back(entry.first);
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  std::vector<mesh::TetVertices> holding;
+  for (const TetId t : near) {
+    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
+    if (BladeInside(corners, pose)) holding.push_back(corners);
+  }
+  return holding;
 }
 
 void Cutter::SplitReadyGroups(const BladePose* pose, const std::vector<TetId>* near) {
@@ -472,12 +531,6 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
 void Cutter::UpdateOpenTets(const BladePose* pose) {
   const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
   const auto current = [&](VertexId v) { return mesh_->current_position(v); };
-  struct Plan {
-    TetId tet;
-    bool temporary;
-    int table_case;
-    TetSplit split;
-  };
   while (true) {  // again after a tet the blade left is frozen or has its hits dropped
     last_pose_ = {};
     std::vector<TetId> tets;
@@ -496,6 +549,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       return v;
     };
     std::vector<Plan> plans;
+    std::vector<std::pair<FaceKey, TemporaryPoint>> kept_points;  // of plans that keep
     std::vector<TetId> failed_final;
     bool failed_temporary = false;
     // Where the blade edge crosses each face, found once per face so both its tets agree.
@@ -610,9 +664,46 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         }
         continue;
       }
+      if (inside) {
+        const double least = kMinTemporaryHeight * SmallestHeight(corners, rest);
+        if (std::any_of(split.tets.begin(), split.tets.end(), [&](const mesh::TetVertices& piece) {
+              return SmallestHeight(piece, rest) < least;
+            })) {
+          // Kept as it is, its temporary points where the blade was.
+          ++statistics_.thin_temporary_plans;
+          Plan keep{t, true, table_case, {}, true};
+          for (const TetId piece : open_.at(t).pieces) keep.split.tets.push_back(mesh_->tet(piece));
+          for (const auto& [place, point] : temporary_points_) {
+            const bool uses = std::any_of(keep.split.tets.begin(), keep.split.tets.end(),
+                                          [&](const mesh::TetVertices& piece) {
+                                            return mesh::TetHasVertex(piece, point.vertex);
+                                          });
+            if (uses) kept_points.push_back({place, {point.vertex, point.weights, false}});
+          }
+          plans.push_back(std::move(keep));
+          continue;
+        }
+      }
       plans.push_back({t, inside, table_case, std::move(split)});
     }
 
+    for (const auto& [place, point] : kept_points) {
+      // A kept point where this pose made another: the two sides of its face would differ.
+      const auto [it, fresh] = points.try_emplace(place, point);
+      if (!fresh && it->second.vertex != point.vertex) failed_temporary = true;
+    }
+    if (!failed_temporary && failed_final.empty()) {
+      for (const std::size_t k : NonConformingPlans(plans)) {
+        ++statistics_.nonconforming_plans;
+        if (plans[k].temporary) {
+          failed_temporary = true;
+        } else {
+          failed_final.push_back(plans[k].tet);
+        }
+      }
+      // A temporary subdivision at fault holds the pose; final ones alone are frozen.
+      if (failed_temporary) failed_final.clear();
+    }
     if (failed_temporary || !failed_final.empty()) {
       // Take back what this attempt made; the mesh is as it was.
       for (const EdgeKey key : edges_given) {
@@ -626,7 +717,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         (void)mesh_->RemoveVertex(hit.vertex);
         hit.vertex = kNoVertex;
       }
-      for (const auto& [place, point] : points) (void)mesh_->RemoveVertex(point.vertex);
+      for (const auto& [place, point] : points) {
+        if (mesh_->TetsAround(point.vertex).empty()) (void)mesh_->RemoveVertex(point.vertex);
+      }
       if (failed_final.empty()) {
         ++statistics_.held_poses;
         last_pose_.held = true;
@@ -680,6 +773,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     for (const auto& entry : temporary_points_) old_temporary.insert(entry.second.vertex);
     std::vector<mesh::TetVertices> closed;
     for (Plan& plan : plans) {
+      if (plan.keep) continue;
       OpenTet& open = open_.at(plan.tet);
       const mesh::TetVertices corners = mesh_->tet_even_if_removed(plan.tet);
       if (plan.split.tets.empty()) {
@@ -756,6 +850,28 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     for (const auto& [place, point] : temporary_points_) {
       if (!place_code.contains(point.vertex)) (void)mesh_->RemoveVertex(point.vertex);
     }
+    // Points made for subdivisions that were kept instead.
+    for (const EdgeKey key : edges_given) {
+      EdgeHit& hit = edge_hits_.at(key);
+      if (!mesh_->TetsAround(hit.near_low).empty()) continue;
+      (void)mesh_->RemoveVertex(hit.near_low);
+      (void)mesh_->RemoveVertex(hit.near_high);
+      hit.near_low = hit.near_high = kNoVertex;
+    }
+    for (const FaceKey& key : faces_given) {
+      FaceHit& hit = face_hits_.at(key);
+      if (!mesh_->TetsAround(hit.vertex).empty()) continue;
+      (void)mesh_->RemoveVertex(hit.vertex);
+      hit.vertex = kNoVertex;
+    }
+    for (auto it = points.begin(); it != points.end();) {
+      if (mesh_->TetsAround(it->second.vertex).empty()) {
+        (void)mesh_->RemoveVertex(it->second.vertex);
+        points.erase(it++);
+      } else {
+        ++it;
+      }
+    }
     temporary_points_ = std::move(points);
     for (const mesh::TetVertices& corners : closed) ForgetHitsOf(corners);
     break;
@@ -765,6 +881,74 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
   }
   last_pose_.open_tets = open_.size();
   for (const auto& [t, open] : open_) last_pose_.temporary_tets += open.pieces.size();
+}
+
+std::vector<std::size_t> Cutter::NonConformingPlans(const std::vector<Plan>& plans) const {
+  const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
+  // What each plan puts in its tet's place, and which plans hold each face.
+  std::vector<std::vector<mesh::TetVertices>> placed(plans.size());
+  absl::flat_hash_map<FaceKey, std::vector<std::size_t>, FaceKeyHash> plans_on;
+  for (std::size_t p = 0; p < plans.size(); ++p) {
+    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(plans[p].tet);
+    placed[p] =
+        plans[p].split.tets.empty() ? std::vector<mesh::TetVertices>{corners} : plans[p].split.tets;
+    for (const auto& f : mesh::kTetFaces) {
+      plans_on[MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]])].push_back(p);
+    }
+  }
+  // Whether a live tet not standing for `t` has the triangle.
+  const auto attached = [&](TetId t, const Triangle& tri) {
+    for (const TetId other : mesh_->TetsAroundFace(tri[0], tri[1], tri[2])) {
+      if (OwnerOf(other) != t) return true;
+    }
+    return false;
+  };
+  std::vector<std::size_t> faulty;
+  for (std::size_t p = 0; p < plans.size(); ++p) {
+    const TetId t = plans[p].tet;
+    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
+    bool conforming = true;
+    for (int k = 0; k < 4 && conforming; ++k) {
+      const auto& f = mesh::kTetFaces[k];
+      const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+      const std::vector<Triangle> mine = TrianglesOnFace(corners, k, placed[p], rest);
+      const std::vector<std::size_t>& sharing = plans_on.at(key);
+      if (sharing.size() > 1) {
+        // The other side is planned too: the same triangles.
+        const std::size_t q = sharing[0] == p ? sharing[1] : sharing[0];
+        const mesh::TetVertices& across = mesh_->tet_even_if_removed(plans[q].tet);
+        const int at = static_cast<int>(
+            std::find_if(mesh::kTetFaces.begin(), mesh::kTetFaces.end(),
+                         [&](const auto& g) {
+                           return MakeFaceKey(across[g[0]], across[g[1]], across[g[2]]) == key;
+                         }) -
+            mesh::kTetFaces.begin());
+        conforming = TrianglesOnFace(across, at, placed[q], rest) == mine;
+        continue;
+      }
+      // The other side stays as it is: every triangle has a tet there, or none has (the
+      // surface, or a crack); what stands for t now tells which.
+      const std::size_t with_tet = static_cast<std::size_t>(std::count_if(
+          mine.begin(), mine.end(), [&](const Triangle& tri) { return attached(t, tri); }));
+      if (with_tet == mine.size()) continue;
+      if (with_tet > 0) {
+        conforming = false;
+        continue;
+      }
+      std::vector<mesh::TetVertices> now;
+      const auto open = open_.find(t);
+      if (open == open_.end() || open->second.pieces.empty()) {
+        now.push_back(corners);
+      } else {
+        for (const TetId piece : open->second.pieces) now.push_back(mesh_->tet(piece));
+      }
+      const std::vector<Triangle> before = TrianglesOnFace(corners, k, now, rest);
+      conforming = std::none_of(before.begin(), before.end(),
+                                [&](const Triangle& tri) { return attached(t, tri); });
+    }
+    if (!conforming) faulty.push_back(p);
+  }
+  return faulty;
 }
 
 void Cutter::MakePermanent(const std::function<bool(const FaceKey&, VertexId)>& which) {

@@ -13,16 +13,19 @@
 // left out, so no face ever carries two points (the overlap of the paper's Figure 5 cannot
 // arise). When only the blade moved, the temporary points are made again at their new places
 // with the tets that use them; when the case or topology changed, the tet's subdivision is
-// rebuilt; when the blade has left, the final minimal subdivision replaces it. A pose whose
-// subdivisions cannot all be made (a pattern no case covers) leaves the mesh as it was (held);
+// rebuilt; when the blade has left, the final minimal subdivision replaces it. Before anything
+// is applied, each subdivision's triangles on its tet's faces are compared with those of the
+// other side (its plan, or the tets there), so the mesh conforms by construction. A pose whose
+// subdivisions cannot all be made (a pattern no case covers, or triangles that would differ
+// from the other side's) leaves the mesh as it was (held);
 // a tet the blade left in such a pattern keeps its last temporary subdivision (frozen), so the
 // crack it made stays. Withdrawing the blade makes the temporary face points permanent.
 //
-// Deferred (the default, until a blade turning back over tets already finally subdivided keeps
-// every face conforming progressively): the tets the blade has crossed are subdivided once it has
-// left them. The tets joined through cut edges and crossed faces form a group split in one step,
-// when the blade has left all of them (or at Finish). A group member whose pattern is none of the
-// five cases has its hits dropped, and the group is re-examined.
+// Deferred (the default until progressive sessions keep real time; see the README): the tets
+// the blade has crossed are subdivided once it has left them. The tets joined through cut edges and
+// crossed faces form a group split in one step, when the blade has left all of them (or at Finish).
+// A group member whose pattern is none of the five cases has its hits dropped, and the group is
+// re-examined.
 //
 // Either way the mesh stays valid and conforming after every pose: a cut edge becomes two
 // vertices in every tet around it at once, and a face is triangulated alike in both its tets.
@@ -78,6 +81,11 @@ struct CutStatistics {
   std::size_t moved = 0;        // temporary subdivisions whose points only moved
   std::size_t held_poses = 0;   // poses that left the mesh as it was
   std::size_t frozen_tets = 0;  // tets left in their last temporary subdivision
+  // Subdivisions not applied because a face of theirs would differ from the other side's.
+  std::size_t nonconforming_plans = 0;
+  // Temporary subdivisions not made because a tet of theirs would be too thin (the tet kept
+  // its previous one).
+  std::size_t thin_temporary_plans = 0;
 };
 
 // What the last pose did (progressive cutting).
@@ -123,8 +131,10 @@ class Cutter {
   // The vertices made since the last call that are still used (in creation order).
   std::vector<MadeVertex> TakeMadeVertices();
 
-  // The live tets the blade at `pose` is inside or crosses (on current positions). O(tets near).
-  std::vector<mesh::TetId> TetsHoldingBlade(const BladePose& pose) const;
+  // The corners of the tets the blade at `pose` is inside or crosses (on current positions). A
+  // tet the blade is subdividing progressively counts whole: the blade lies on the faces of its
+  // temporary pieces. O(tets near).
+  std::vector<mesh::TetVertices> TetsHoldingBlade(const BladePose& pose) const;
 
   // Whether the cutter made `t` (it replaced a cut tet).
   bool MadeByCut(mesh::TetId t) const { return source_tet_.contains(t); }
@@ -178,6 +188,18 @@ class Cutter {
   std::vector<mesh::TetId> TetsWith(std::span<const mesh::VertexId> vertices) const;
   // Progressive: subdivides every open tet for the blade at `pose` (null: withdrawn).
   void UpdateOpenTets(const BladePose* pose);
+  // What an open tet becomes in this pose: `split.tets` empty means it stays as it is.
+  struct Plan {
+    mesh::TetId tet;
+    bool temporary;
+    int table_case;
+    TetSplit split;
+    bool keep = false;  // temporary, kept as it is: `split.tets` are its pieces now
+  };
+  // The plans (by index) whose triangles on a face of their tet differ from those of the other
+  // side: the plan there, or the live tets there if its tet is not open. Applying them all
+  // keeps the mesh conforming exactly when this is empty. O(plans * pieces).
+  std::vector<std::size_t> NonConformingPlans(const std::vector<Plan>& plans) const;
   // Makes the temporary points `which` picks (by place and vertex) permanent: a face point
   // becomes that face's hit, a point inside a tet an ordinary vertex.
   void MakePermanent(const std::function<bool(const FaceKey&, mesh::VertexId)>& which);

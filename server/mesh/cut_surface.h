@@ -2,10 +2,9 @@
 //
 // Cut vertices come in copies at the same rest position (one per side of the crack), so a
 // face on the crack has a twin: another face in one tet with the same three rest positions.
-// Every other face in one tet must lie on the original surface and tile it exactly once; a
-// non-conforming subdivision (a face of one tet split differently in its neighbour) leaves a
-// face with neither, and the surface's area grows. So the area of the non-crack faces, which
-// must equal the original surface's, checks conformity and that no face overlaps another.
+// The other faces in one tet are the original surface, so their area equals the original
+// surface's, unless a later cut crossed a crack and tiled one of its sides anew (those faces
+// then have no twin). Conformity is checked by mesh::CheckOriginalFacesTiled.
 #pragma once
 
 #include <cstddef>

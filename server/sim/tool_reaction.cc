@@ -10,8 +10,7 @@ namespace kerf::sim {
 namespace {
 
 // Whether p is inside the tet (current positions), faces included.
-bool Inside(const mesh::TetMesh& m, mesh::TetId t, const Eigen::Vector3d& p) {
-  const mesh::TetVertices& v = m.tet(t);
+bool Inside(const mesh::TetMesh& m, const mesh::TetVertices& v, const Eigen::Vector3d& p) {
   return geometry::ContainsPoint(m.current_position(v[0]), m.current_position(v[1]),
                                  m.current_position(v[2]), m.current_position(v[3]), p);
 }
@@ -23,12 +22,12 @@ ToolReaction MeasureToolReaction(const Simulation& simulation, const cut::BladeP
   ToolReaction reaction;
   const cut::Cutter* cutter = simulation.cutter();
   if (cutter == nullptr) return reaction;
-  const std::vector<mesh::TetId> holding = cutter->TetsHoldingBlade(pose);
+  const std::vector<mesh::TetVertices> holding = cutter->TetsHoldingBlade(pose);
   if (holding.empty()) return reaction;
   const mesh::TetMesh& m = simulation.mesh();
   std::vector<mesh::VertexId> vertices;
-  for (const mesh::TetId t : holding) {
-    for (const mesh::VertexId v : m.tet(t)) vertices.push_back(v);
+  for (const mesh::TetVertices& corners : holding) {
+    for (const mesh::VertexId v : corners) vertices.push_back(v);
   }
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
@@ -59,7 +58,7 @@ ToolReaction MeasureToolReaction(const Simulation& simulation, const cut::BladeP
   for (int k = 0; k < kSamples; ++k) {
     const Eigen::Vector3d p = pose.tip + (k + 0.5) / kSamples * (pose.heel - pose.tip);
     if (std::any_of(holding.begin(), holding.end(),
-                    [&](mesh::TetId t) { return Inside(m, t, p); })) {
+                    [&](const mesh::TetVertices& t) { return Inside(m, t, p); })) {
       ++inside;
     }
   }

@@ -13,7 +13,7 @@
 #include "cut/progressive_case_paths.h"
 #include "mesh/boundary_surface.h"
 #include "mesh/connected_components.h"
-#include "mesh/cut_surface.h"
+#include "mesh/face_tiling.h"
 #include "mesh/io/mesh_file.h"
 #include "mesh/mesh_quality.h"
 #include "mesh/mesh_validation.h"
@@ -217,15 +217,15 @@ namespace kerf::cut {
 namespace {
 
 struct RandomCutTotals {
-  std::size_t poses = 0, cut_tets = 0, dropped = 0, held = 0;
+  std::size_t poses = 0, cut_tets = 0, dropped = 0, held = 0, frozen = 0;
 };
 
 // Random blades wandering through `make_mesh()`'s mesh (of about `size` across, starting
-// around `low`), with reversals and hesitations: the mesh must be valid, conforming and keep
-// its volume after every pose.
+// around `low`), cut in `mode`, with reversals and hesitations: the mesh must be valid,
+// conforming and keep its volume after every pose.
 RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
                                const Eigen::Vector3d& low, double size, int paths, int poses,
-                               std::uint32_t seed) {
+                               std::uint32_t seed, CutMode mode) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0, 1);
   BladeLimits limits;
@@ -235,9 +235,10 @@ RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
   RandomCutTotals totals;
   for (int path = 0; path < paths; ++path) {
     TetMesh m = make_mesh();
+    const TetMesh uncut = m;
     const double volume = RestVolume(m);
-    const double surface = mesh::MeasureCutSurface(m).surface_area;
-    Cutter cutter = *Cutter::Create(&m, 0.15 * size, limits);
+    Cutter cutter = *Cutter::Create(&m, 0.15 * size, limits, mode);
+    const auto source = [&](mesh::TetId t) { return cutter.SourceTet(t); };
     // A blade a quarter to half the mesh's size, pointing roughly downward.
     Eigen::Vector3d tip = low + size * Eigen::Vector3d(unit(random), unit(random), unit(random));
     Eigen::Vector3d along(unit(random) - 0.5, unit(random) - 0.5, 1.5);
@@ -247,13 +248,11 @@ RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
     for (int k = 0; k < poses; ++k, ++totals.poses) {
       EXPECT_TRUE(cutter.ApplyPose({time, tip, heel}).ok());
       const std::vector<mesh::MeshDefect> defects = mesh::FindMeshDefects(m);
-      // Conforming, no face overlapping another: the surface off the crack is the original one.
-      const double cut_surface = mesh::MeasureCutSurface(m).surface_area;
-      if (!defects.empty() || std::abs(RestVolume(m) - volume) > 1e-12 * volume ||
-          std::abs(cut_surface - surface) > 1e-9 * surface) {
+      // Conforming, each original face tiled once: properties 2 and 6.
+      const absl::Status tiled = mesh::CheckOriginalFacesTiled(uncut, m, source);
+      if (!defects.empty() || std::abs(RestVolume(m) - volume) > 1e-12 * volume || !tiled.ok()) {
         ADD_FAILURE() << "path " << path << " pose " << k << ": " << mesh::ValidateMesh(m)
-                      << ", volume " << RestVolume(m) << " of " << volume << ", surface "
-                      << cut_surface << " of " << surface;
+                      << ", volume " << RestVolume(m) << " of " << volume << ", " << tiled;
         return totals;
       }
       time += 0.01;
@@ -269,39 +268,58 @@ RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
     EXPECT_TRUE(mesh::FindMeshDefects(m).empty())
         << "path " << path << ": " << mesh::ValidateMesh(m);
     EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
-    EXPECT_NEAR(mesh::MeasureCutSurface(m).surface_area, surface, 1e-9 * surface);
+    EXPECT_TRUE(mesh::CheckOriginalFacesTiled(uncut, m, source).ok())
+        << "path " << path << ": " << mesh::CheckOriginalFacesTiled(uncut, m, source);
     EXPECT_EQ(cutter.waiting_tets(), 0u);
     totals.held += cutter.statistics().held_poses;
+    totals.frozen += cutter.statistics().frozen_tets;
     totals.cut_tets += cutter.statistics().cut_tets;
     totals.dropped += cutter.statistics().dropped_hits;
   }
   return totals;
 }
 
-TEST(Cutter, RandomPathsThroughTheLatticeKeepEveryPropertyAfterEveryPose) {
-  // 200 paths of 50 poses: 10^4 poses.
+// 200 paths of 50 poses each: 10^4 poses per mode.
+class RandomPaths : public ::testing::TestWithParam<CutMode> {
+ protected:
+  static const char* ModeName() {
+    return GetParam() == CutMode::kProgressive ? "progressive" : "deferred";
+  }
+};
+
+TEST_P(RandomPaths, ThroughTheLatticeKeepEveryPropertyAfterEveryPose) {
   const RandomCutTotals totals =
-      RunRandomPaths(Bar, Eigen::Vector3d(0, -0.005, 0), 0.06, 200, 50, 17);
-  std::printf("random paths, lattice, deferred: %zu poses, %zu tets cut, %zu hits dropped\n",
-              totals.poses, totals.cut_tets, totals.dropped);
+      RunRandomPaths(Bar, Eigen::Vector3d(0, -0.005, 0), 0.06, 200, 50, 17, GetParam());
+  std::printf(
+      "random paths, lattice, %s: %zu poses, %zu tets cut, %zu hits dropped, %zu poses "
+      "held, %zu tets frozen\n",
+      ModeName(), totals.poses, totals.cut_tets, totals.dropped, totals.held, totals.frozen);
   EXPECT_EQ(totals.poses, 10000u);
   EXPECT_GT(totals.cut_tets, 0u);
 }
 
-TEST(Cutter, RandomPathsThroughTheLiverKeepEveryPropertyAfterEveryPose) {
+TEST_P(RandomPaths, ThroughTheLiverKeepEveryPropertyAfterEveryPose) {
   const std::string path = kerf::testing::SharedMeshPath("liver.msh");
   if (path.empty()) GTEST_SKIP() << "shared/meshes is not beside the repo";
   const TetMesh liver = *mesh::ReadMeshFile(path);
   const mesh::Bounds bounds = mesh::MeasureBounds(liver);
   const auto copy = [&] { return liver; };
   // 100 paths of 50 poses: 5,000 poses.
-  const RandomCutTotals totals =
-      RunRandomPaths(copy, bounds.low, (bounds.high - bounds.low).maxCoeff(), 100, 50, 23);
-  std::printf("random paths, liver: %zu poses, %zu tets cut, %zu hits dropped\n", totals.poses,
-              totals.cut_tets, totals.dropped);
+  const RandomCutTotals totals = RunRandomPaths(
+      copy, bounds.low, (bounds.high - bounds.low).maxCoeff(), 100, 50, 23, GetParam());
+  std::printf(
+      "random paths, liver, %s: %zu poses, %zu tets cut, %zu hits dropped, %zu poses "
+      "held, %zu tets frozen\n",
+      ModeName(), totals.poses, totals.cut_tets, totals.dropped, totals.held, totals.frozen);
   EXPECT_EQ(totals.poses, 5000u);
   EXPECT_GT(totals.cut_tets, 0u);
 }
+
+INSTANTIATE_TEST_SUITE_P(BothModes, RandomPaths,
+                         ::testing::Values(CutMode::kProgressive, CutMode::kDeferred),
+                         [](const auto& mode) {
+                           return mode.param == CutMode::kProgressive ? "Progressive" : "Deferred";
+                         });
 
 }  // namespace
 }  // namespace kerf::cut

@@ -12,6 +12,7 @@
 #include "cut/progressive_case_paths.h"
 #include "mesh/connected_components.h"
 #include "mesh/cut_surface.h"
+#include "mesh/face_tiling.h"
 #include "mesh/mesh_validation.h"
 
 namespace kerf::cut {
@@ -46,16 +47,18 @@ struct PathResult {
 // a tet (7: the cone's largest count; the final cases keep tet_split's bounds).
 PathResult CutChecked(const ScriptedPath& path, CutMode mode) {
   TetMesh m = ScriptedPathLattice();
+  const TetMesh uncut = m;
   const double volume = RestVolume(m);
-  const double surface = mesh::MeasureCutSurface(m).surface_area;
   Cutter cutter = *Cutter::Create(&m, 0.01, {}, mode);
+  const auto source = [&](mesh::TetId t) { return cutter.SourceTet(t); };
   for (std::size_t i = 0; i < path.poses.size(); ++i) {
     SCOPED_TRACE(testing::Message() << path.name << " pose " << i);
     const BladePose& pose = path.poses[i];
     EXPECT_TRUE(cutter.ApplyPose(pose).ok());
     EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
     EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
-    EXPECT_NEAR(mesh::MeasureCutSurface(m).surface_area, surface, 1e-9 * surface);
+    EXPECT_TRUE(mesh::CheckOriginalFacesTiled(uncut, m, source).ok())
+        << mesh::CheckOriginalFacesTiled(uncut, m, source);
     for (const VertexId v : m.vertices()) {
       // A held pose keeps the previous pose's points.
       if (cutter.last_pose().held || !cutter.IsOnBladeNow(v)) continue;
@@ -68,7 +71,8 @@ PathResult CutChecked(const ScriptedPath& path, CutMode mode) {
   EXPECT_EQ(cutter.waiting_tets(), 0u);
   EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
   EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
-  EXPECT_NEAR(mesh::MeasureCutSurface(m).surface_area, surface, 1e-9 * surface);
+  EXPECT_TRUE(mesh::CheckOriginalFacesTiled(uncut, m, source).ok())
+      << mesh::CheckOriginalFacesTiled(uncut, m, source);
   const CutStatistics& s = cutter.statistics();
   EXPECT_LE(s.new_tets, 10 * s.cut_tets);
   return {s, RestVolume(m), mesh::MeasureCutSurface(m).crack_area,

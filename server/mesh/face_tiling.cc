@@ -1,0 +1,93 @@
+#include "mesh/face_tiling.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "absl/container/flat_hash_map.h"
+#include "absl/strings/str_cat.h"
+
+namespace kerf::mesh {
+namespace {
+
+using Triangle = std::array<VertexId, 3>;
+
+Triangle Sorted(Triangle t) {
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+double Area(const TetMesh& mesh, const Triangle& t) {
+  const Eigen::Vector3d& a = mesh.rest_position(t[0]);
+  return 0.5 * (mesh.rest_position(t[1]) - a).cross(mesh.rest_position(t[2]) - a).norm();
+}
+
+std::string Describe(const Triangle& t) {
+  return absl::StrCat("(", Index(t[0]), ", ", Index(t[1]), ", ", Index(t[2]), ")");
+}
+
+}  // namespace
+
+absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
+                                     const std::function<TetId(TetId)>& source_of) {
+  // The triangles of the cut mesh on each face (tet, local face) of the uncut one.
+  absl::flat_hash_map<std::pair<std::uint32_t, int>, std::vector<Triangle>> tiles;
+  for (const TetId piece : cut.tets()) {
+    const TetId source = source_of(piece);
+    const TetVertices& corners = uncut.tet(source);
+    const TetVertices& v = cut.tet(piece);
+    for (int k = 0; k < 4; ++k) {
+      const auto& f = kTetFaces[k];
+      const Eigen::Vector3d& origin = uncut.rest_position(corners[f[0]]);
+      const Eigen::Vector3d normal = (uncut.rest_position(corners[f[1]]) - origin)
+                                         .cross(uncut.rest_position(corners[f[2]]) - origin);
+      const double tolerance =
+          1e-9 * std::abs(normal.dot(uncut.rest_position(corners[k]) - origin));
+      std::array<bool, 4> on;
+      for (int m = 0; m < 4; ++m) {
+        on[m] = std::abs(normal.dot(cut.rest_position(v[m]) - origin)) <= tolerance;
+      }
+      if (std::count(on.begin(), on.end(), true) < 3) continue;
+      if (std::count(on.begin(), on.end(), true) == 4) {
+        return absl::FailedPreconditionError(
+            absl::StrCat("tet ", Index(piece), " is flat on face ", k, " of tet ", Index(source)));
+      }
+      const int off = static_cast<int>(std::find(on.begin(), on.end(), false) - on.begin());
+      tiles[{Index(source), k}].push_back(
+          Sorted({v[(off + 1) % 4], v[(off + 2) % 4], v[(off + 3) % 4]}));
+    }
+  }
+  // Each face tiled once, and an interior face alike from both sides.
+  absl::flat_hash_map<std::array<std::uint32_t, 3>, std::pair<std::uint32_t, int>> first_side;
+  for (const TetId t : uncut.tets()) {
+    const TetVertices& corners = uncut.tet(t);
+    for (int k = 0; k < 4; ++k) {
+      const auto& f = kTetFaces[k];
+      const Triangle face = Sorted({corners[f[0]], corners[f[1]], corners[f[2]]});
+      std::vector<Triangle>& mine = tiles[{Index(t), k}];
+      std::sort(mine.begin(), mine.end());
+      double area = 0;
+      for (const Triangle& tile : mine) area += Area(cut, tile);
+      if (std::abs(area - Area(uncut, face)) > 1e-9 * Area(uncut, face)) {
+        return absl::FailedPreconditionError(
+            absl::StrCat("face ", Describe(face), " of tet ", Index(t), " is tiled ",
+                         area / Area(uncut, face), " times by the tets cut from it"));
+      }
+      const auto [other, fresh] = first_side.try_emplace(
+          std::array<std::uint32_t, 3>{Index(face[0]), Index(face[1]), Index(face[2])}, Index(t),
+          k);
+      if (fresh) continue;
+      if (tiles[other->second] != mine) {
+        return absl::FailedPreconditionError(
+            absl::StrCat("face ", Describe(face), " is split differently in the pieces of tets ",
+                         other->second.first, " and ", Index(t)));
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace kerf::mesh

@@ -1,0 +1,23 @@
+// Properties 2 and 6 of a cut (shared/design/cutting.md), checked on the faces of the mesh
+// before the cut: each face of each uncut tet is tiled exactly once by the faces of the tets
+// that came from it, and an interior face is tiled by the same triangles from both sides
+// (the cut crosses faces, so no part of an interior face lies on it).
+//
+// Faces inside an uncut tet (between pieces, or on a crack) are not checked here: a crack's two
+// sides may be tiled differently once a later cut crosses it, which is no defect.
+#pragma once
+
+#include <functional>
+
+#include "absl/status/status.h"
+#include "mesh/tet_mesh.h"
+
+namespace kerf::mesh {
+
+// `cut` is `uncut` after cutting: its vertices keep their ids and rest positions, and
+// `source_of(t)` is the tet of `uncut` that live tet t of `cut` came from. OK, or
+// FAILED_PRECONDITION naming the first face tiled wrongly. O(tets of cut + faces of uncut).
+absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
+                                     const std::function<TetId(TetId)>& source_of);
+
+}  // namespace kerf::mesh
