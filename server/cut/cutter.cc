@@ -673,12 +673,12 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           ++statistics_.thin_temporary_plans;
           Plan keep{t, true, table_case, {}, true};
           for (const TetId piece : open_.at(t).pieces) keep.split.tets.push_back(mesh_->tet(piece));
-          for (const auto& [place, point] : temporary_points_) {
-            const bool uses = std::any_of(keep.split.tets.begin(), keep.split.tets.end(),
-                                          [&](const mesh::TetVertices& piece) {
-                                            return mesh::TetHasVertex(piece, point.vertex);
-                                          });
-            if (uses) kept_points.push_back({place, {point.vertex, point.weights, false}});
+          for (const auto& entry : temporary_points_) {
+            const VertexId v = entry.second.vertex;
+            const bool uses = std::any_of(
+                keep.split.tets.begin(), keep.split.tets.end(),
+                [&](const mesh::TetVertices& piece) { return mesh::TetHasVertex(piece, v); });
+            if (uses) kept_points.push_back({entry.first, {v, entry.second.weights, false}});
           }
           plans.push_back(std::move(keep));
           continue;
