@@ -115,7 +115,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   // Checks, measures, traces and dumps the mesh after pose `i` (poses.size(): withdrawn).
   const auto after_pose = [&](std::size_t i) -> absl::Status {
     const bool withdrawn = i == poses.size();
-    const mesh::CutSurface cut_surface = mesh::MeasureCutSurface(*m);
+    const double crack_area = mesh::MeasureCrackArea(*m);
     const bool valid = mesh::FindMeshDefects(*m).empty() &&
                        std::abs(TotalRestVolume(*m) - volume) <= 1e-12 * volume &&
                        mesh::CheckOriginalFacesTiled(uncut, *m, [&](mesh::TetId t) {
@@ -124,7 +124,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
     if (!valid) report.set_invalid_poses(report.invalid_poses() + 1);
     cut::PoseLag lag;
     if (!withdrawn) {
-      lag = lag_meter.Measure(poses[i], cut_surface.crack_area);
+      lag = lag_meter.Measure(poses[i], crack_area);
       lag_sum += lag.lag_area;
       report.set_max_lag_area(std::max(report.max_lag_area(), lag.lag_area));
       report.set_max_lag_distance(std::max(report.max_lag_distance(), lag.lag_distance));
@@ -144,7 +144,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
           "},\"open_tets\":", withdrawn ? 0 : pose.open_tets,
           ",\"temporary_tets\":", withdrawn ? 0 : pose.temporary_tets,
           ",\"held\":", !withdrawn && pose.held ? "true" : "false", ",\"tets\":", m->tet_count(),
-          ",\"valid\":", valid ? "true" : "false", ",\"open_area\":", cut_surface.crack_area,
+          ",\"valid\":", valid ? "true" : "false", ",\"open_area\":", crack_area,
           withdrawn ? ""
                     : absl::StrCat(
                           ",\"swept_area\":", lag.swept_area, ",\"lag_area\":", lag.lag_area,

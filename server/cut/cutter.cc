@@ -11,6 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
+#include "mesh/face_tiling.h"
 #include "mesh/mesh_quality.h"
 
 namespace kerf::cut {
@@ -34,6 +35,11 @@ std::array<VertexId, 3> MakeFaceKey(VertexId a, VertexId b, VertexId c) {
   std::array<VertexId, 3> key = {a, b, c};
   std::sort(key.begin(), key.end());
   return key;
+}
+
+// The key of face f (local corners) of the tet with corners v.
+std::array<VertexId, 3> MakeFaceKey(const mesh::TetVertices& v, const std::array<int, 3>& f) {
+  return MakeFaceKey(v[f[0]], v[f[1]], v[f[2]]);
 }
 
 // The place of the temporary point inside tet t (the tip, or a point of its crack), beside
@@ -78,46 +84,10 @@ constexpr double kTipMargin = 1e-3;
 // or face would make tets as thin as its last step.
 constexpr double kMinTemporaryHeight = 0.02;
 
-// The tet's smallest height (rest positions): three times its volume over its largest face.
-double SmallestHeight(const mesh::TetVertices& t,
-                      const std::function<Eigen::Vector3d(VertexId)>& rest) {
-  const double volume =
-      std::abs(geometry::SignedVolume(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])));
-  double largest_face = 0;
-  for (const auto& f : mesh::kTetFaces) {
-    largest_face =
-        std::max(largest_face,
-                 0.5 * (rest(t[f[1]]) - rest(t[f[0]])).cross(rest(t[f[2]]) - rest(t[f[0]])).norm());
-  }
-  return largest_face > 0 ? 3 * volume / largest_face : 0;
-}
-
-using Triangle = std::array<VertexId, 3>;
-
-// The faces of `pieces` (sorted vertex ids) that lie on face k of the tet `corners`, by rest
-// positions: every vertex within a billionth of the tet's height of the face's plane.
-std::vector<Triangle> TrianglesOnFace(const mesh::TetVertices& corners, int k,
-                                      std::span<const mesh::TetVertices> pieces,
-                                      const std::function<Eigen::Vector3d(VertexId)>& rest) {
-  const auto& f = mesh::kTetFaces[k];
-  const Eigen::Vector3d origin = rest(corners[f[0]]);
-  const Eigen::Vector3d normal = (rest(corners[f[1]]) - origin).cross(rest(corners[f[2]]) - origin);
-  const double height = normal.dot(rest(corners[k]) - origin);
-  const auto on_face = [&](VertexId v) {
-    return std::abs(normal.dot(rest(v) - origin)) <= 1e-9 * std::abs(height);
-  };
-  std::vector<Triangle> triangles;
-  for (const mesh::TetVertices& piece : pieces) {
-    std::array<bool, 4> on;
-    for (int m = 0; m < 4; ++m) on[m] = on_face(piece[m]);
-    if (std::count(on.begin(), on.end(), true) != 3) continue;
-    const int off = static_cast<int>(std::find(on.begin(), on.end(), false) - on.begin());
-    Triangle t = {piece[(off + 1) % 4], piece[(off + 2) % 4], piece[(off + 3) % 4]};
-    std::sort(t.begin(), t.end());
-    triangles.push_back(t);
-  }
-  std::sort(triangles.begin(), triangles.end());
-  return triangles;
+// The tet's smallest height at rest.
+double SmallestHeight(const mesh::TetMesh& mesh, const mesh::TetVertices& t) {
+  return geometry::SmallestHeight(mesh.rest_position(t[0]), mesh.rest_position(t[1]),
+                                  mesh.rest_position(t[2]), mesh.rest_position(t[3]));
 }
 
 }  // namespace
@@ -195,7 +165,7 @@ bool Cutter::Realisable(std::span<const VertexId> vertices) const {
   for (const auto& [t, open] : open_) {
     const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
     for (const auto& f : mesh::kTetFaces) {
-      const FaceKey face = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+      const FaceKey face = MakeFaceKey(corners, f);
       const bool on_face = std::all_of(vertices.begin(), vertices.end(), [&](VertexId v) {
         return std::find(face.begin(), face.end(), v) != face.end();
       });
@@ -274,7 +244,7 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
       }
     }
     for (const auto& face : mesh::kTetFaces) {
-      const FaceKey key = MakeFaceKey(v[face[0]], v[face[1]], v[face[2]]);
+      const FaceKey key = MakeFaceKey(v, face);
       if (face_hits_.contains(key) || !tested_faces.insert(key).second) continue;
       const auto crossing = geometry::IntersectSegmentTriangle(
           from.tip, to.tip, mesh_->current_position(key[0]), mesh_->current_position(key[1]),
@@ -432,8 +402,7 @@ std::vector<FacePoint> Cutter::FacePointsOf(const mesh::TetVertices& corners) co
   std::vector<FacePoint> points;
   for (int k = 0; k < 4; ++k) {
     const auto& face = mesh::kTetFaces[k];
-    const auto it =
-        face_hits_.find(MakeFaceKey(corners[face[0]], corners[face[1]], corners[face[2]]));
+    const auto it = face_hits_.find(MakeFaceKey(corners, face));
     if (it != face_hits_.end()) points.push_back({k, it->second.vertex});
   }
   return points;
@@ -451,7 +420,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
     for (const TetId t : group) {
       const mesh::TetVertices v = mesh_->tet(t);
       for (const auto& face : mesh::kTetFaces) {
-        const auto it = face_hits_.find(MakeFaceKey(v[face[0]], v[face[1]], v[face[2]]));
+        const auto it = face_hits_.find(MakeFaceKey(v, face));
         if (it != face_hits_.end() && it->second.vertex == kNoVertex) {
           const FaceKey& k = it->first;
           it->second.vertex = MakeVertex(
@@ -495,7 +464,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
         for (const auto& [i, j] : mesh::kTetEdges)
           edge_hits_.erase(MakeEdgeKey(corners[i], corners[j]));
         for (const auto& f : mesh::kTetFaces) {
-          face_hits_.erase(MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]));
+          face_hits_.erase(MakeFaceKey(corners, f));
         }
       }
       break;
@@ -514,7 +483,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
         ++statistics_.dropped_hits;
       }
       for (const auto& f : mesh::kTetFaces) {
-        const auto it = face_hits_.find(MakeFaceKey(v[f[0]], v[f[1]], v[f[2]]));
+        const auto it = face_hits_.find(MakeFaceKey(v, f));
         if (it == face_hits_.end()) continue;
         if (it->second.vertex != kNoVertex) (void)mesh_->RemoveVertex(it->second.vertex);
         face_hits_.erase(it);
@@ -548,6 +517,27 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       points[place] = {v, weights, on_blade};
       return v;
     };
+    // Takes back the vertices this attempt made that no tet uses.
+    const auto take_back_unused = [&] {
+      for (const EdgeKey key : edges_given) {
+        EdgeHit& hit = edge_hits_.at(key);
+        if (!mesh_->TetsAround(hit.near_low).empty()) continue;
+        (void)mesh_->RemoveVertex(hit.near_low);
+        (void)mesh_->RemoveVertex(hit.near_high);
+        hit.near_low = hit.near_high = kNoVertex;
+      }
+      for (const FaceKey& key : faces_given) {
+        FaceHit& hit = face_hits_.at(key);
+        if (!mesh_->TetsAround(hit.vertex).empty()) continue;
+        (void)mesh_->RemoveVertex(hit.vertex);
+        hit.vertex = kNoVertex;
+      }
+      absl::erase_if(points, [&](const auto& entry) {
+        if (!mesh_->TetsAround(entry.second.vertex).empty()) return false;
+        (void)mesh_->RemoveVertex(entry.second.vertex);
+        return true;
+      });
+    };
     std::vector<Plan> plans;
     std::vector<std::pair<FaceKey, TemporaryPoint>> kept_points;  // of plans that keep
     std::vector<TetId> failed_final;
@@ -562,7 +552,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       if (pose != nullptr) {
         for (int k = 0; k < 4; ++k) {
           const auto& f = mesh::kTetFaces[k];
-          const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+          const FaceKey key = MakeFaceKey(corners, f);
           auto [it, fresh] = crossing_of.try_emplace(key);
           if (fresh) {
             it->second = geometry::IntersectSegmentTriangle(pose->tip, pose->heel, current(key[0]),
@@ -583,7 +573,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       int face_hits = 0, temporary_faces = 0;
       for (int k = 0; k < 4; ++k) {
         const auto& f = mesh::kTetFaces[k];
-        const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+        const FaceKey key = MakeFaceKey(corners, f);
         const auto hit = face_hits_.find(key);
         face_hits += hit != face_hits_.end();
         std::optional<Eigen::Vector3d> crossing;
@@ -665,9 +655,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         continue;
       }
       if (inside) {
-        const double least = kMinTemporaryHeight * SmallestHeight(corners, rest);
+        const double least = kMinTemporaryHeight * SmallestHeight(*mesh_, corners);
         if (std::any_of(split.tets.begin(), split.tets.end(), [&](const mesh::TetVertices& piece) {
-              return SmallestHeight(piece, rest) < least;
+              return SmallestHeight(*mesh_, piece) < least;
             })) {
           // Kept as it is, its temporary points where the blade was.
           ++statistics_.thin_temporary_plans;
@@ -705,21 +695,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       if (failed_temporary) failed_final.clear();
     }
     if (failed_temporary || !failed_final.empty()) {
-      // Take back what this attempt made; the mesh is as it was.
-      for (const EdgeKey key : edges_given) {
-        EdgeHit& hit = edge_hits_.at(key);
-        (void)mesh_->RemoveVertex(hit.near_low);
-        (void)mesh_->RemoveVertex(hit.near_high);
-        hit.near_low = hit.near_high = kNoVertex;
-      }
-      for (const FaceKey& key : faces_given) {
-        FaceHit& hit = face_hits_.at(key);
-        (void)mesh_->RemoveVertex(hit.vertex);
-        hit.vertex = kNoVertex;
-      }
-      for (const auto& [place, point] : points) {
-        if (mesh_->TetsAround(point.vertex).empty()) (void)mesh_->RemoveVertex(point.vertex);
-      }
+      take_back_unused();  // nothing was applied: the mesh is as it was
       if (failed_final.empty()) {
         ++statistics_.held_poses;
         last_pose_.held = true;
@@ -745,8 +721,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
             ++statistics_.dropped_hits;
           }
           for (const auto& f : mesh::kTetFaces) {
-            const auto it =
-                face_hits_.find(MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]));
+            const auto it = face_hits_.find(MakeFaceKey(corners, f));
             if (it == face_hits_.end() || it->second.vertex != kNoVertex) continue;
             face_hits_.erase(it);
             ++statistics_.dropped_hits;
@@ -850,28 +825,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     for (const auto& [place, point] : temporary_points_) {
       if (!place_code.contains(point.vertex)) (void)mesh_->RemoveVertex(point.vertex);
     }
-    // Points made for subdivisions that were kept instead.
-    for (const EdgeKey key : edges_given) {
-      EdgeHit& hit = edge_hits_.at(key);
-      if (!mesh_->TetsAround(hit.near_low).empty()) continue;
-      (void)mesh_->RemoveVertex(hit.near_low);
-      (void)mesh_->RemoveVertex(hit.near_high);
-      hit.near_low = hit.near_high = kNoVertex;
-    }
-    for (const FaceKey& key : faces_given) {
-      FaceHit& hit = face_hits_.at(key);
-      if (!mesh_->TetsAround(hit.vertex).empty()) continue;
-      (void)mesh_->RemoveVertex(hit.vertex);
-      hit.vertex = kNoVertex;
-    }
-    for (auto it = points.begin(); it != points.end();) {
-      if (mesh_->TetsAround(it->second.vertex).empty()) {
-        (void)mesh_->RemoveVertex(it->second.vertex);
-        points.erase(it++);
-      } else {
-        ++it;
-      }
-    }
+    take_back_unused();  // made for subdivisions that were kept instead
     temporary_points_ = std::move(points);
     for (const mesh::TetVertices& corners : closed) ForgetHitsOf(corners);
     break;
@@ -884,16 +838,18 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
 }
 
 std::vector<std::size_t> Cutter::NonConformingPlans(const std::vector<Plan>& plans) const {
-  const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
-  // What each plan puts in its tet's place, and which plans hold each face.
-  std::vector<std::vector<mesh::TetVertices>> placed(plans.size());
-  absl::flat_hash_map<FaceKey, std::vector<std::size_t>, FaceKeyHash> plans_on;
+  using Triangle = std::array<VertexId, 3>;
+  // Each plan's triangles on each face of its tet, and the (plan, face) pairs on each face.
+  std::vector<std::array<std::vector<Triangle>, 4>> on_face(plans.size());
+  absl::flat_hash_map<FaceKey, std::vector<std::pair<std::size_t, int>>, FaceKeyHash> sides;
   for (std::size_t p = 0; p < plans.size(); ++p) {
     const mesh::TetVertices& corners = mesh_->tet_even_if_removed(plans[p].tet);
-    placed[p] =
-        plans[p].split.tets.empty() ? std::vector<mesh::TetVertices>{corners} : plans[p].split.tets;
-    for (const auto& f : mesh::kTetFaces) {
-      plans_on[MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]])].push_back(p);
+    const std::vector<mesh::TetVertices> whole = {corners};
+    const std::vector<mesh::TetVertices>& placed =
+        plans[p].split.tets.empty() ? whole : plans[p].split.tets;
+    for (int k = 0; k < 4; ++k) {
+      on_face[p][k] = mesh::TrianglesOnFace(*mesh_, corners, k, placed);
+      sides[MakeFaceKey(corners, mesh::kTetFaces[k])].push_back({p, k});
     }
   }
   // Whether a live tet not standing for `t` has the triangle.
@@ -903,50 +859,38 @@ std::vector<std::size_t> Cutter::NonConformingPlans(const std::vector<Plan>& pla
     }
     return false;
   };
-  std::vector<std::size_t> faulty;
-  for (std::size_t p = 0; p < plans.size(); ++p) {
+  // Whether plan p's triangles on face k are those of the other side.
+  const auto conforms = [&](std::size_t p, int k) {
     const TetId t = plans[p].tet;
     const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
-    bool conforming = true;
-    for (int k = 0; k < 4 && conforming; ++k) {
-      const auto& f = mesh::kTetFaces[k];
-      const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
-      const std::vector<Triangle> mine = TrianglesOnFace(corners, k, placed[p], rest);
-      const std::vector<std::size_t>& sharing = plans_on.at(key);
-      if (sharing.size() > 1) {
-        // The other side is planned too: the same triangles.
-        const std::size_t q = sharing[0] == p ? sharing[1] : sharing[0];
-        const mesh::TetVertices& across = mesh_->tet_even_if_removed(plans[q].tet);
-        const int at = static_cast<int>(
-            std::find_if(mesh::kTetFaces.begin(), mesh::kTetFaces.end(),
-                         [&](const auto& g) {
-                           return MakeFaceKey(across[g[0]], across[g[1]], across[g[2]]) == key;
-                         }) -
-            mesh::kTetFaces.begin());
-        conforming = TrianglesOnFace(across, at, placed[q], rest) == mine;
-        continue;
-      }
-      // The other side stays as it is: every triangle has a tet there, or none has (the
-      // surface, or a crack); what stands for t now tells which.
-      const std::size_t with_tet = static_cast<std::size_t>(std::count_if(
-          mine.begin(), mine.end(), [&](const Triangle& tri) { return attached(t, tri); }));
-      if (with_tet == mine.size()) continue;
-      if (with_tet > 0) {
-        conforming = false;
-        continue;
-      }
-      std::vector<mesh::TetVertices> now;
-      const auto open = open_.find(t);
-      if (open == open_.end() || open->second.pieces.empty()) {
-        now.push_back(corners);
-      } else {
-        for (const TetId piece : open->second.pieces) now.push_back(mesh_->tet(piece));
-      }
-      const std::vector<Triangle> before = TrianglesOnFace(corners, k, now, rest);
-      conforming = std::none_of(before.begin(), before.end(),
-                                [&](const Triangle& tri) { return attached(t, tri); });
+    const std::vector<Triangle>& mine = on_face[p][k];
+    const auto& sharing = sides.at(MakeFaceKey(corners, mesh::kTetFaces[k]));
+    if (sharing.size() > 1) {  // the other side is planned too
+      const auto [q, j] = sharing[0].first == p ? sharing[1] : sharing[0];
+      return on_face[q][j] == mine;
     }
-    if (!conforming) faulty.push_back(p);
+    // The other side stays as it is: every triangle has a tet there, or none has (the surface,
+    // or a crack); what stands for t now tells which.
+    const std::size_t with_tet = static_cast<std::size_t>(std::count_if(
+        mine.begin(), mine.end(), [&](const Triangle& tri) { return attached(t, tri); }));
+    if (with_tet == mine.size()) return true;
+    if (with_tet > 0) return false;
+    std::vector<mesh::TetVertices> now;
+    const auto open = open_.find(t);
+    if (open == open_.end() || open->second.pieces.empty()) {
+      now.push_back(corners);
+    } else {
+      for (const TetId piece : open->second.pieces) now.push_back(mesh_->tet(piece));
+    }
+    const std::vector<Triangle> before = mesh::TrianglesOnFace(*mesh_, corners, k, now);
+    return std::none_of(before.begin(), before.end(),
+                        [&](const Triangle& tri) { return attached(t, tri); });
+  };
+  std::vector<std::size_t> faulty;
+  for (std::size_t p = 0; p < plans.size(); ++p) {
+    if (!conforms(p, 0) || !conforms(p, 1) || !conforms(p, 2) || !conforms(p, 3)) {
+      faulty.push_back(p);
+    }
   }
   return faulty;
 }
@@ -969,7 +913,7 @@ void Cutter::CloseOpenTet(TetId t) {
   // Its faces with points are split for good.
   const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
   for (const auto& f : mesh::kTetFaces) {
-    const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+    const FaceKey key = MakeFaceKey(corners, f);
     if (face_hits_.contains(key) || edge_hits_.contains(MakeEdgeKey(key[0], key[1])) ||
         edge_hits_.contains(MakeEdgeKey(key[1], key[2])) ||
         edge_hits_.contains(MakeEdgeKey(key[0], key[2]))) {
@@ -992,7 +936,7 @@ void Cutter::ForgetHitsOf(const mesh::TetVertices& corners) {
   }
   for (const auto& f : mesh::kTetFaces) {
     if (!open_has({corners[f[0]], corners[f[1]], corners[f[2]]})) {
-      face_hits_.erase(MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]));
+      face_hits_.erase(MakeFaceKey(corners, f));
     }
   }
 }

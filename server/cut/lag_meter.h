@@ -4,7 +4,7 @@
 // (each tet's crack is flat, the swept surface of a turning blade is not).
 //
 // The swept surface is the two triangles per step (cutting.md), clipped to the tissue before
-// the cut; the opening is the crack of the cut mesh (mesh::MeasureCutSurface). Both on the
+// the cut; the opening is the crack of the cut mesh (mesh::MeasureCrackArea). Both on the
 // positions the blade's path is given in (a mesh at rest, as `kerf cut` cuts it).
 #pragma once
 
@@ -33,7 +33,7 @@ class LagMeter {
   explicit LagMeter(const mesh::TetMesh& tissue);
 
   // Call after each pose was applied, with the crack open in the cut mesh then
-  // (mesh::MeasureCutSurface(cut).crack_area, m^2). O(tets of the tissue).
+  // (mesh::MeasureCrackArea(cut), m^2). O(tets of the tissue).
   PoseLag Measure(const BladePose& pose, double open_area);
 
  private:

@@ -36,12 +36,8 @@ std::vector<BladePose> Start(const Eigen::Vector3d& tip, const Eigen::Vector3d& 
 }  // namespace
 
 mesh::TetMesh ScriptedPathLattice() {
-  mesh::BoxLatticeSpec spec;
-  spec.cells_x = 6;
-  spec.cells_y = 2;
-  spec.cells_z = 2;
-  spec.size = {0.06, 0.02, 0.02};
-  return *mesh::MakeBoxLattice(spec);
+  return *mesh::MakeBoxLattice(
+      {.cells_x = 6, .cells_y = 2, .cells_z = 2, .size = {0.06, 0.02, 0.02}});
 }
 
 std::vector<ScriptedPath> ProgressiveCasePaths() {

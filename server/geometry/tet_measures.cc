@@ -22,6 +22,13 @@ double SignedVolume(const Vector3d& a, const Vector3d& b, const Vector3d& c, con
   return (b - a).cross(c - a).dot(d - a) / 6.0;
 }
 
+double SmallestHeight(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& d) {
+  const double twice_largest_face =
+      std::max({(c - b).cross(d - b).norm(), (d - a).cross(c - a).norm(),
+                (b - a).cross(d - a).norm(), (c - a).cross(b - a).norm()});
+  return twice_largest_face > 0 ? 6 * std::abs(SignedVolume(a, b, c, d)) / twice_largest_face : 0;
+}
+
 std::array<double, 6> DihedralAnglesDeg(const Vector3d& a, const Vector3d& b, const Vector3d& c,
                                         const Vector3d& d) {
   // Face normals, one per face, each oriented to point away from the corner opposite it.

@@ -24,6 +24,11 @@ bool ContainsPoint(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 std::array<double, 6> DihedralAnglesDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                         const Eigen::Vector3d& c, const Eigen::Vector3d& d);
 
+// The smallest of the four heights (corner to opposite face's plane): three times the volume
+// over the largest face's area; 0 for a flat tet. The explicit time step scales with it.
+double SmallestHeight(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& d);
+
 // 3 * inradius / circumradius: 1 for the regular tet, 0 for a flat one. Orientation-free.
 double RadiusRatio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d);

@@ -10,7 +10,7 @@
 
 namespace kerf::mesh {
 
-CutSurface MeasureCutSurface(const TetMesh& mesh) {
+double MeasureCrackArea(const TetMesh& mesh) {
   using Point = std::tuple<double, double, double>;
   using Key = std::array<Point, 3>;
   absl::flat_hash_map<Key, int> count;
@@ -27,20 +27,14 @@ CutSurface MeasureCutSurface(const TetMesh& mesh) {
     ++count[key];
     keys.push_back(key);
   }
-  CutSurface surface;
+  double crack_area = 0;
   for (std::size_t i = 0; i < faces.size(); ++i) {
+    if (count[keys[i]] < 2) continue;
     const std::array<VertexId, 3>& v = faces[i].vertices;
     const Eigen::Vector3d& a = mesh.rest_position(v[0]);
-    const double area =
-        0.5 * (mesh.rest_position(v[1]) - a).cross(mesh.rest_position(v[2]) - a).norm();
-    if (count[keys[i]] > 1) {
-      surface.crack_area += 0.5 * area;
-      ++surface.crack_faces;
-    } else {
-      surface.surface_area += area;
-    }
+    crack_area += 0.25 * (mesh.rest_position(v[1]) - a).cross(mesh.rest_position(v[2]) - a).norm();
   }
-  return surface;
+  return crack_area;
 }
 
 }  // namespace kerf::mesh

@@ -31,33 +31,38 @@ std::string Describe(const Triangle& t) {
 
 }  // namespace
 
+std::vector<Triangle> TrianglesOnFace(const TetMesh& mesh, const TetVertices& corners, int k,
+                                      std::span<const TetVertices> pieces) {
+  const auto& f = kTetFaces[k];
+  const Eigen::Vector3d& origin = mesh.rest_position(corners[f[0]]);
+  const Eigen::Vector3d normal = (mesh.rest_position(corners[f[1]]) - origin)
+                                     .cross(mesh.rest_position(corners[f[2]]) - origin);
+  const double tolerance = 1e-9 * std::abs(normal.dot(mesh.rest_position(corners[k]) - origin));
+  std::vector<Triangle> triangles;
+  for (const TetVertices& piece : pieces) {
+    std::array<bool, 4> on;
+    for (int m = 0; m < 4; ++m) {
+      on[m] = std::abs(normal.dot(mesh.rest_position(piece[m]) - origin)) <= tolerance;
+    }
+    if (std::count(on.begin(), on.end(), true) != 3) continue;
+    const int off = static_cast<int>(std::find(on.begin(), on.end(), false) - on.begin());
+    triangles.push_back(Sorted({piece[(off + 1) % 4], piece[(off + 2) % 4], piece[(off + 3) % 4]}));
+  }
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
+
 absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
                                      const std::function<TetId(TetId)>& source_of) {
-  // The triangles of the cut mesh on each face (tet, local face) of the uncut one.
+  // The triangles of the cut mesh on each face (tet, local face) of the uncut one (its
+  // vertices are the cut mesh's, at the same rest positions).
   absl::flat_hash_map<std::pair<std::uint32_t, int>, std::vector<Triangle>> tiles;
   for (const TetId piece : cut.tets()) {
     const TetId source = source_of(piece);
-    const TetVertices& corners = uncut.tet(source);
-    const TetVertices& v = cut.tet(piece);
     for (int k = 0; k < 4; ++k) {
-      const auto& f = kTetFaces[k];
-      const Eigen::Vector3d& origin = uncut.rest_position(corners[f[0]]);
-      const Eigen::Vector3d normal = (uncut.rest_position(corners[f[1]]) - origin)
-                                         .cross(uncut.rest_position(corners[f[2]]) - origin);
-      const double tolerance =
-          1e-9 * std::abs(normal.dot(uncut.rest_position(corners[k]) - origin));
-      std::array<bool, 4> on;
-      for (int m = 0; m < 4; ++m) {
-        on[m] = std::abs(normal.dot(cut.rest_position(v[m]) - origin)) <= tolerance;
+      for (const Triangle& t : TrianglesOnFace(cut, uncut.tet(source), k, {&cut.tet(piece), 1})) {
+        tiles[{Index(source), k}].push_back(t);
       }
-      if (std::count(on.begin(), on.end(), true) < 3) continue;
-      if (std::count(on.begin(), on.end(), true) == 4) {
-        return absl::FailedPreconditionError(
-            absl::StrCat("tet ", Index(piece), " is flat on face ", k, " of tet ", Index(source)));
-      }
-      const int off = static_cast<int>(std::find(on.begin(), on.end(), false) - on.begin());
-      tiles[{Index(source), k}].push_back(
-          Sorted({v[(off + 1) % 4], v[(off + 2) % 4], v[(off + 3) % 4]}));
     }
   }
   // Each face tiled once, and an interior face alike from both sides.
@@ -68,7 +73,7 @@ absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
       const auto& f = kTetFaces[k];
       const Triangle face = Sorted({corners[f[0]], corners[f[1]], corners[f[2]]});
       std::vector<Triangle>& mine = tiles[{Index(t), k}];
-      std::sort(mine.begin(), mine.end());
+      std::sort(mine.begin(), mine.end());  // gathered piece by piece
       double area = 0;
       for (const Triangle& tile : mine) area += Area(cut, tile);
       if (std::abs(area - Area(uncut, face)) > 1e-9 * Area(uncut, face)) {

@@ -7,12 +7,22 @@
 // sides may be tiled differently once a later cut crosses it, which is no defect.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <span>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "mesh/tet_mesh.h"
 
 namespace kerf::mesh {
+
+// The faces of `pieces` that lie on face k (kTetFaces) of the tet `corners`, each with its
+// vertex ids sorted, the list sorted: the faces whose three vertices lie, at rest, within a
+// billionth of the tet's height of the face's plane. O(pieces).
+std::vector<std::array<VertexId, 3>> TrianglesOnFace(const TetMesh& mesh,
+                                                     const TetVertices& corners, int k,
+                                                     std::span<const TetVertices> pieces);
 
 // `cut` is `uncut` after cutting: its vertices keep their ids and rest positions, and
 // `source_of(t)` is the tet of `uncut` that live tet t of `cut` came from. OK, or

@@ -123,12 +123,8 @@ void BM_FinalSubdivision(benchmark::State& state) {
 // counter k, measured). The mesh is the same for every k, so the cost grows with k only.
 void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
   const int wanted = static_cast<int>(state.range(0));
-  mesh::BoxLatticeSpec spec;
-  spec.cells_x = 2;
-  spec.cells_y = 2;
-  spec.cells_z = 8;
-  spec.size = Eigen::Vector3d(0.02, 0.02, 0.08);
-  mesh::TetMesh m = *mesh::MakeBoxLattice(spec);
+  mesh::TetMesh m =
+      *mesh::MakeBoxLattice({.cells_x = 2, .cells_y = 2, .cells_z = 8, .size = {0.02, 0.02, 0.08}});
   BladeLimits limits;
   limits.max_length = 1;
   limits.max_speed = 1e9;

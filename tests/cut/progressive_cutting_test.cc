@@ -75,8 +75,7 @@ PathResult CutChecked(const ScriptedPath& path, CutMode mode) {
       << mesh::CheckOriginalFacesTiled(uncut, m, source);
   const CutStatistics& s = cutter.statistics();
   EXPECT_LE(s.new_tets, 10 * s.cut_tets);
-  return {s, RestVolume(m), mesh::MeasureCutSurface(m).crack_area,
-          mesh::FindConnectedComponents(m).count};
+  return {s, RestVolume(m), mesh::MeasureCrackArea(m), mesh::FindConnectedComponents(m).count};
 }
 
 TEST(ProgressiveCase, FollowsTableOne) {
@@ -159,7 +158,7 @@ TEST(ProgressiveCutting, TheOpeningKeepsUpWithTheBlade) {
     double largest = 0;
     for (const BladePose& pose : path.poses) {
       ASSERT_TRUE(cutter.ApplyPose(pose).ok());
-      const PoseLag lag = meter.Measure(pose, mesh::MeasureCutSurface(m).crack_area);
+      const PoseLag lag = meter.Measure(pose, mesh::MeasureCrackArea(m));
       most_steps = std::max(most_steps, lag.lag_steps);
       largest = std::max(largest, lag.lag_area);
     }

@@ -17,12 +17,8 @@ using mesh::TetId;
 using mesh::VertexId;
 
 mesh::TetMesh Lattice() {
-  mesh::BoxLatticeSpec spec;
-  spec.cells_x = 8;
-  spec.cells_y = 6;
-  spec.cells_z = 5;
-  spec.size = {0.08, 0.06, 0.05};
-  return *mesh::MakeBoxLattice(spec);
+  return *mesh::MakeBoxLattice(
+      {.cells_x = 8, .cells_y = 6, .cells_z = 5, .size = {0.08, 0.06, 0.05}});
 }
 
 // Every live tet whose current bounding box meets the query box must be a candidate.

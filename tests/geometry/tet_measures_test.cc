@@ -17,6 +17,15 @@ TEST(SignedVolume, UnitCornerTetIsOneSixthAndFlipsWithOrientation) {
   EXPECT_DOUBLE_EQ(SignedVolume(kO, kX, kY, Vector3d(0.3, 0.3, 0)), 0.0);
 }
 
+TEST(SmallestHeight, IsTheCornerOppositeTheLargestFaceAndZeroWhenFlat) {
+  // The unit corner tet: the origin is 1/sqrt(3) from the slanted face, the others 1 away.
+  EXPECT_NEAR(SmallestHeight(kO, kX, kY, kZ), 1 / std::sqrt(3.0), 1e-15);
+  EXPECT_NEAR(SmallestHeight(kX, kO, kY, kZ), 1 / std::sqrt(3.0), 1e-15);  // orientation-free
+  // Squashed to a thousandth along z (the slanted face is the largest), and flat.
+  EXPECT_NEAR(SmallestHeight(kO, kX, kY, 0.001 * kZ), 0.001 / std::sqrt(1 + 2e-6), 1e-15);
+  EXPECT_EQ(SmallestHeight(kO, kX, kY, Vector3d(0.3, 0.3, 0)), 0);
+}
+
 TEST(ContainsPoint, InsideAndOnTheBoundaryButNotOutsideInEitherOrientation) {
   const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
   for (const bool flipped : {false, true}) {

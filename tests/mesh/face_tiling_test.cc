@@ -63,7 +63,7 @@ std::optional<SharedFace> FindSharedFace(const TetMesh& m, bool interior) {
 
 class FaceTiling : public ::testing::Test {
  protected:
-  FaceTiling() : uncut_(*MakeBoxLattice({2, 1, 1, {2, 1, 1}})), cut_(uncut_) {}
+  FaceTiling() : uncut_(*MakeBoxLattice({.cells_x = 2, .size = {2, 1, 1}})), cut_(uncut_) {}
   absl::Status Check() const {
     return CheckOriginalFacesTiled(uncut_, cut_, [&](TetId t) {
       const auto it = source_.find(t);
