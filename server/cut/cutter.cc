@@ -357,16 +357,37 @@ void Cutter::SplitReadyGroups(const BladePose* pose, const std::vector<TetId>* n
   for (std::vector<TetId>& group : ready) SplitGroup(std::move(group));
 }
 
-VertexId Cutter::MakeVertex(const std::array<VertexId, 4>& from, const Eigen::Vector4d& weights) {
+namespace {
+
+// The rest and current positions `weights` give on `from`.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> PlaceOf(const mesh::TetMesh& mesh,
+                                                    const std::array<VertexId, 4>& from,
+                                                    const Eigen::Vector4d& weights) {
   Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
   for (int k = 0; k < 4; ++k) {
     if (weights[k] == 0) continue;
-    rest += weights[k] * mesh_->rest_position(from[k]);
-    current += weights[k] * mesh_->current_position(from[k]);
+    rest += weights[k] * mesh.rest_position(from[k]);
+    current += weights[k] * mesh.current_position(from[k]);
   }
+  return {rest, current};
+}
+
+}  // namespace
+
+VertexId Cutter::MakeVertex(const std::array<VertexId, 4>& from, const Eigen::Vector4d& weights) {
+  const auto [rest, current] = PlaceOf(*mesh_, from, weights);
   const VertexId v = mesh_->AddVertex(rest, current);
   made_vertices_.push_back({v, from, weights});
   return v;
+}
+
+void Cutter::MoveMadeVertex(VertexId v, const std::array<VertexId, 4>& from,
+                            const Eigen::Vector4d& weights) {
+  const auto [rest, current] = PlaceOf(*mesh_, from, weights);
+  const absl::Status moved = mesh_->MoveVertex(v, rest, current);
+  assert(moved.ok());
+  (void)moved;
+  made_vertices_.push_back({v, from, weights});
 }
 
 std::vector<MadeVertex> Cutter::TakeMadeVertices() {
@@ -509,13 +530,41 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     std::vector<EdgeKey> edges_given;
     std::vector<FaceKey> faces_given;
     absl::flat_hash_map<FaceKey, TemporaryPoint, FaceKeyHash> points;
+    // The previous pose's points this attempt moved, with their positions then.
+    struct Before {
+      Eigen::Vector3d rest, current;
+    };
+    absl::flat_hash_map<VertexId, Before> moved_points;
+    const std::size_t made_before = made_vertices_.size();
+    // A point at a place the previous pose had one moves there (its tets stay the same tets).
     const auto temporary_point = [&](const FaceKey& place, const std::array<VertexId, 4>& from,
                                      const Eigen::Vector4d& weights, bool on_blade = true) {
       const auto it = points.find(place);
       if (it != points.end()) return it->second.vertex;
-      const VertexId v = MakeVertex(from, weights);
-      points[place] = {v, weights, on_blade};
+      const auto old = temporary_points_.find(place);
+      VertexId v;
+      if (old != temporary_points_.end()) {
+        v = old->second.vertex;
+        if (old->second.weights != weights || old->second.from != from) {
+          moved_points.try_emplace(v, Before{mesh_->rest_position(v), mesh_->current_position(v)});
+          MoveMadeVertex(v, from, weights);
+        }
+      } else {
+        v = MakeVertex(from, weights);
+      }
+      points[place] = {v, from, weights, on_blade};
       return v;
+    };
+    // Puts the points this attempt moved back where they were.
+    const auto put_back_moved = [&] {
+      for (const auto& [v, before] : moved_points) {
+        const absl::Status s = mesh_->MoveVertex(v, before.rest, before.current);
+        assert(s.ok());
+        (void)s;
+      }
+      std::erase_if(made_vertices_, [&, k = std::size_t{0}](const MadeVertex& m) mutable {
+        return k++ >= made_before && moved_points.contains(m.vertex);
+      });
     };
     // Takes back the vertices this attempt made that no tet uses.
     const auto take_back_unused = [&] {
@@ -668,7 +717,10 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
             const bool uses = std::any_of(
                 keep.split.tets.begin(), keep.split.tets.end(),
                 [&](const mesh::TetVertices& piece) { return mesh::TetHasVertex(piece, v); });
-            if (uses) kept_points.push_back({entry.first, {v, entry.second.weights, false}});
+            if (uses) {
+              kept_points.push_back(
+                  {entry.first, {v, entry.second.from, entry.second.weights, false}});
+            }
           }
           plans.push_back(std::move(keep));
           continue;
@@ -680,7 +732,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     for (const auto& [place, point] : kept_points) {
       // A kept point where this pose made another: the two sides of its face would differ.
       const auto [it, fresh] = points.try_emplace(place, point);
-      if (!fresh && it->second.vertex != point.vertex) failed_temporary = true;
+      if (!fresh && (it->second.vertex != point.vertex || it->second.weights != point.weights)) {
+        failed_temporary = true;
+      }
     }
     if (!failed_temporary && failed_final.empty()) {
       for (const std::size_t k : NonConformingPlans(plans)) {
@@ -696,6 +750,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     }
     if (failed_temporary || !failed_final.empty()) {
       take_back_unused();  // nothing was applied: the mesh is as it was
+      put_back_moved();
       if (failed_final.empty()) {
         ++statistics_.held_poses;
         last_pose_.held = true;
@@ -744,8 +799,6 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       const auto it = place_code.find(v);
       return it == place_code.end() ? std::uint64_t{Index(v)} : it->second;
     };
-    absl::flat_hash_set<VertexId> old_temporary;
-    for (const auto& entry : temporary_points_) old_temporary.insert(entry.second.vertex);
     std::vector<mesh::TetVertices> closed;
     for (Plan& plan : plans) {
       if (plan.keep) continue;
@@ -767,29 +820,26 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         signature.push_back(c);
       }
       std::sort(signature.begin(), signature.end());
-      const bool moved = plan.temporary && signature == open.signature;
-      const auto uses_temporary = [&](const mesh::TetVertices& v, const auto& set) {
-        return std::any_of(v.begin(), v.end(), [&](VertexId x) { return set.contains(x); });
+      const auto positive = [&](const mesh::TetVertices& v) {
+        return geometry::SignedVolume(rest(v[0]), rest(v[1]), rest(v[2]), rest(v[3])) > 0;
       };
-      // Take out what stands for the tet now (when only points moved: the tets using them).
+      if (plan.temporary && signature == open.signature &&
+          std::all_of(open.pieces.begin(), open.pieces.end(),
+                      [&](TetId piece) { return positive(mesh_->tet(piece)); })) {
+        ++statistics_.moved;  // only its points moved, in place: its pieces stay
+        continue;
+      }
+      // Take out what stands for the tet now.
       if (open.pieces.empty()) {
         if (mesh_->IsAlive(plan.tet)) (void)mesh_->RemoveTet(plan.tet);
       }
-      std::vector<TetId> kept;
       for (const TetId piece : open.pieces) {
-        if (moved && !uses_temporary(mesh_->tet(piece), old_temporary)) {
-          kept.push_back(piece);
-          continue;
-        }
         owner_.erase(piece);
         (void)mesh_->RemoveTet(piece);
       }
+      std::vector<TetId> kept;
       for (mesh::TetVertices piece : plan.split.tets) {
-        if (moved && !uses_temporary(piece, place_code)) continue;  // kept as it was
-        if (geometry::SignedVolume(rest(piece[0]), rest(piece[1]), rest(piece[2]), rest(piece[3])) <
-            0) {
-          std::swap(piece[2], piece[3]);
-        }
+        if (!positive(piece)) std::swap(piece[2], piece[3]);
         const absl::StatusOr<TetId> added = mesh_->AddTet(piece);
         assert(added.ok());
         source_tet_[*added] = SourceTet(plan.tet);
@@ -797,7 +847,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         if (plan.temporary) owner_[*added] = plan.tet;
       }
       if (plan.temporary) {
-        ++(moved ? statistics_.moved : statistics_.rebuilt);
+        ++statistics_.rebuilt;
         open.pieces = std::move(kept);
         open.signature = std::move(signature);
       } else {

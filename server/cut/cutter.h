@@ -11,15 +11,15 @@
 // its faces (temporary face points) count as face points, and while the tip is inside, the
 // crack reaches the tip (a cone from it). Points on a face with no cut edge cannot open and are
 // left out, so no face ever carries two points (the overlap of the paper's Figure 5 cannot
-// arise). When only the blade moved, the temporary points are made again at their new places
-// with the tets that use them; when the case or topology changed, the tet's subdivision is
-// rebuilt; when the blade has left, the final minimal subdivision replaces it. Before anything
-// is applied, each subdivision's triangles on its tet's faces are compared with those of the
-// other side (its plan, or the tets there), so the mesh conforms by construction. A pose whose
-// subdivisions cannot all be made (a pattern no case covers, or triangles that would differ
-// from the other side's) leaves the mesh as it was (held);
-// a tet the blade left in such a pattern keeps its last temporary subdivision (frozen), so the
-// crack it made stays. Withdrawing the blade makes the temporary face points permanent.
+// arise). When only the blade moved, the temporary points move (the same vertices and tets,
+// recorded as moves for the model to follow); when the case or topology changed, the tet's
+// subdivision is rebuilt; when the blade has left, the final minimal subdivision replaces it.
+// Before anything is applied, each subdivision's triangles on its tet's faces are compared with
+// those of the other side (its plan, or the tets there), so the mesh conforms by construction. A
+// pose whose subdivisions cannot all be made (a pattern no case covers, or triangles that would
+// differ from the other side's) leaves the mesh as it was (held); a tet the blade left in such a
+// pattern keeps its last temporary subdivision (frozen), so the crack it made stays. Withdrawing
+// the blade makes the temporary face points permanent.
 //
 // Deferred (the default until progressive sessions keep real time; see the README): the tets
 // the blade has crossed are subdivided once it has left them. The tets joined through cut edges and
@@ -165,8 +165,9 @@ class Cutter {
   // A temporary point of the applied subdivisions.
   struct TemporaryPoint {
     mesh::VertexId vertex;
-    Eigen::Vector4d weights;  // on the face's vertices (key order) or the tet's corners
-    bool on_blade = true;     // false for the middle of a crack's face points
+    std::array<mesh::VertexId, 4> from;  // the face's vertices (key order) or the tet's corners
+    Eigen::Vector4d weights;             // on `from`
+    bool on_blade = true;                // false for the middle of a crack's face points
   };
 
   Cutter(mesh::TetMesh* mesh, TetGrid grid, const BladeLimits& limits, CutMode mode)
@@ -220,6 +221,9 @@ class Cutter {
   std::vector<FacePoint> FacePointsOf(const mesh::TetVertices& corners) const;
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& from,
                             const Eigen::Vector4d& weights);
+  // Moves a vertex the cut made to the place `weights` give on `from` (rest and current).
+  void MoveMadeVertex(mesh::VertexId v, const std::array<mesh::VertexId, 4>& from,
+                      const Eigen::Vector4d& weights);
 
   mesh::TetMesh* mesh_;
   TetGrid grid_;

@@ -1,6 +1,7 @@
 #include "fem/tensor_mass_model.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cassert>
 #include <utility>
 
@@ -55,11 +56,26 @@ absl::StatusOr<TensorMassModel> TensorMassModel::Create(const mesh::TetMesh& mes
 absl::Status TensorMassModel::SyncWithMesh() {
   absl::StatusOr<mesh::MeshChanges> changes = mesh_->change_log().ChangesSince(synced_);
   if (!changes.ok()) return changes.status();
-  for (const TetId t : changes->added_tets) {
-    if (absl::Status s = CheckRestVolumeNonZero(*mesh_, t); !s.ok()) return s;
+  // Tets that were in the model and are still in the mesh, around a moved vertex.
+  std::vector<TetId> reshaped;
+  for (const VertexId v : changes->moved_vertices) {
+    for (const TetId t : mesh_->TetsAround(v)) {
+      if (!std::binary_search(changes->added_tets.begin(), changes->added_tets.end(), t)) {
+        reshaped.push_back(t);
+      }
+    }
+  }
+  std::sort(reshaped.begin(), reshaped.end());
+  reshaped.erase(std::unique(reshaped.begin(), reshaped.end()), reshaped.end());
+  for (const std::vector<TetId>* list : {&changes->added_tets, &reshaped}) {
+    for (const TetId t : *list) {
+      if (absl::Status s = CheckRestVolumeNonZero(*mesh_, t); !s.ok()) return s;
+    }
   }
   GrowToMesh();
   for (const TetId t : changes->removed_tets) Accumulate(t, -1);
+  for (const TetId t : reshaped) Accumulate(t, -1);
+  for (const TetId t : reshaped) Accumulate(t, +1);
   for (const TetId t : changes->added_tets) Accumulate(t, +1);
   // A vertex no tet uses any more (a temporary point of a progressive cut) has no mass or
   // stiffness: exactly, not the rounding left by adding and taking away.
@@ -82,7 +98,9 @@ void TensorMassModel::GrowToMesh() {
 
 void TensorMassModel::Accumulate(TetId t, double sign) {
   const mesh::TetVertices& v = mesh_->tet_even_if_removed(t);
-  const LinearTetStiffness k = ComputeLinearTetStiffness(RestCorners(*mesh_, t), lame_);
+  if (added_with_.size() <= Index(t)) added_with_.resize(Index(t) + 1);
+  if (sign > 0) added_with_[Index(t)] = RestCorners(*mesh_, t);
+  const LinearTetStiffness k = ComputeLinearTetStiffness(added_with_[Index(t)], lame_);
   const double corner_mass = material_.density * k.volume / 4;
   for (int a = 0; a < 4; ++a) {
     vertex_tensors_[Index(v[a])] += sign * k.blocks[a][a];

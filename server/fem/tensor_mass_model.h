@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -39,8 +40,10 @@ class TensorMassModel {
   static absl::StatusOr<TensorMassModel> Create(const mesh::TetMesh& mesh,
                                                 const Material& material);
 
-  // Applies the mesh's tet additions and removals since the last sync. INVALID_ARGUMENT
-  // (and nothing applied) if an added tet has zero rest volume. O(tets changed).
+  // Applies the mesh's tet additions and removals, and vertex moves (the tets around a moved
+  // vertex are taken away as they were added and added anew), since the last sync.
+  // INVALID_ARGUMENT (and nothing applied) if an added or moved tet has zero rest volume.
+  // O(tets changed).
   absl::Status SyncWithMesh();
 
   // f = K u: the paper's Eq. 2, f_i = K_ii u_i + sum_j K_ij u_j. u and f are indexed by vertex
@@ -71,7 +74,8 @@ class TensorMassModel {
   TensorMassModel(const mesh::TetMesh& mesh, const Material& material);
 
   void GrowToMesh();
-  // Adds (sign +1) or subtracts (sign -1) the contributions of tet t.
+  // Adds (sign +1, at its rest corners now) or subtracts (sign -1, at the corners it was added
+  // with) the contributions of tet t.
   void Accumulate(mesh::TetId t, double sign);
 
   const mesh::TetMesh* mesh_;
@@ -82,6 +86,9 @@ class TensorMassModel {
   std::vector<double> masses_;
   std::vector<EdgeTensor> edges_;
   absl::flat_hash_map<std::uint64_t, std::uint32_t> edge_slot_;  // edge key -> index in edges_
+  // The rest corners each live tet was added with (by tet index), to take it away exactly
+  // after its vertices moved.
+  std::vector<std::array<Eigen::Vector3d, 4>> added_with_;
 };
 
 }  // namespace kerf::fem

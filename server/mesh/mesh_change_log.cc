@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "absl/container/flat_hash_map.h"
+#include "absl/container/flat_hash_set.h"
 #include "absl/strings/str_cat.h"
 
 namespace kerf::mesh {
@@ -33,6 +34,7 @@ absl::StatusOr<MeshChanges> MeshChangeLog::ChangesSince(ChangeMark since) const 
         "sequence ", since.sequence, " is past the end of the log (", Mark().sequence, ")"));
   }
   absl::flat_hash_map<std::uint32_t, int> vertex_net, tet_net;
+  absl::flat_hash_set<std::uint32_t> moved;
   for (std::size_t i = since.sequence - first_kept_; i < events_.size(); ++i) {
     const Event& e = events_[i];
     switch (e.kind) {
@@ -48,6 +50,9 @@ absl::StatusOr<MeshChanges> MeshChangeLog::ChangesSince(ChangeMark since) const 
       case Kind::kRemoveTet:
         tet_net[e.id] -= 1;
         break;
+      case Kind::kMoveVertex:
+        moved.insert(e.id);
+        break;
     }
   }
   MeshChanges changes;
@@ -55,6 +60,11 @@ absl::StatusOr<MeshChanges> MeshChangeLog::ChangesSince(ChangeMark since) const 
   changes.removed_vertices = SortedIdsWithNet<VertexId>(vertex_net, -1);
   changes.added_tets = SortedIdsWithNet<TetId>(tet_net, +1);
   changes.removed_tets = SortedIdsWithNet<TetId>(tet_net, -1);
+  for (const std::uint32_t id : moved) {
+    // One added or removed in the interval is listed as such.
+    if (!vertex_net.contains(id)) changes.moved_vertices.push_back(static_cast<VertexId>(id));
+  }
+  std::sort(changes.moved_vertices.begin(), changes.moved_vertices.end());
   return changes;
 }
 

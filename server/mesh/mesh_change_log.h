@@ -1,10 +1,10 @@
 // The record of topology changes to a mesh, from which a later layer streams deltas.
 //
-// Every addition and removal of a vertex or tet is appended as an event with a sequence
-// number. A consumer takes a Mark, and later asks for the net changes since it: an element
-// added and removed again within the interval appears in neither list. Events older than a
-// mark can be discarded to bound memory; asking for changes since a discarded point is an
-// error, on which a consumer falls back to a full snapshot.
+// Every addition and removal of a vertex or tet, and every move of a vertex's rest position,
+// is appended as an event with a sequence number. A consumer takes a Mark, and later asks for the
+// net changes since it: an element added and removed again within the interval appears in neither
+// list. Events older than a mark can be discarded to bound memory; asking for changes since a
+// discarded point is an error, on which a consumer falls back to a full snapshot.
 #pragma once
 
 #include <cstdint>
@@ -27,10 +27,12 @@ struct MeshChanges {
   std::vector<VertexId> removed_vertices;
   std::vector<TetId> added_tets;
   std::vector<TetId> removed_tets;
+  // Vertices neither added nor removed that took a new rest position (TetMesh::MoveVertex).
+  std::vector<VertexId> moved_vertices;
 
   bool empty() const {
     return added_vertices.empty() && removed_vertices.empty() && added_tets.empty() &&
-           removed_tets.empty();
+           removed_tets.empty() && moved_vertices.empty();
   }
 };
 
@@ -41,6 +43,7 @@ class MeshChangeLog {
   void RecordRemovedVertex(VertexId v) { Append(Kind::kRemoveVertex, Index(v)); }
   void RecordAddedTet(TetId t) { Append(Kind::kAddTet, Index(t)); }
   void RecordRemovedTet(TetId t) { Append(Kind::kRemoveTet, Index(t)); }
+  void RecordMovedVertex(VertexId v) { Append(Kind::kMoveVertex, Index(v)); }
 
   // The current end of the log.
   ChangeMark Mark() const { return {first_kept_ + events_.size()}; }
@@ -56,7 +59,7 @@ class MeshChangeLog {
   std::size_t retained_events() const { return events_.size(); }
 
  private:
-  enum class Kind : std::uint8_t { kAddVertex, kRemoveVertex, kAddTet, kRemoveTet };
+  enum class Kind : std::uint8_t { kAddVertex, kRemoveVertex, kAddTet, kRemoveTet, kMoveVertex };
   struct Event {
     Kind kind;
     std::uint32_t id;

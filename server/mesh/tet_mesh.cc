@@ -53,6 +53,15 @@ absl::Status TetMesh::RemoveVertex(VertexId v) {
   return absl::OkStatus();
 }
 
+absl::Status TetMesh::MoveVertex(VertexId v, const Eigen::Vector3d& rest_position,
+                                 const Eigen::Vector3d& current_position) {
+  if (!IsAlive(v)) return absl::NotFoundError(absl::StrCat("vertex ", Index(v), " is not alive"));
+  rest_[Index(v)] = rest_position;
+  current_[Index(v)] = current_position;
+  change_log_.RecordMovedVertex(v);
+  return absl::OkStatus();
+}
+
 const Eigen::Vector3d& TetMesh::rest_position(VertexId v) const {
   assert(IsAlive(v));
   return rest_[Index(v)];

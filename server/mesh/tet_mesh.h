@@ -93,6 +93,11 @@ class TetMesh {
   // tet still uses it. O(1).
   absl::Status RemoveVertex(VertexId v);
 
+  // Gives a live vertex new rest and current positions (a temporary point of a progressive cut
+  // following the blade), recorded as a move. NOT_FOUND if it is not alive. O(1).
+  absl::Status MoveVertex(VertexId v, const Eigen::Vector3d& rest_position,
+                          const Eigen::Vector3d& current_position);
+
   bool IsAlive(VertexId v) const {
     return Index(v) < vertex_alive_.size() && vertex_alive_[Index(v)];
   }

@@ -145,6 +145,41 @@ TEST(ProgressiveCutting, ACrackWithdrawnInsideTetsStays) {
   FAIL() << "no stop-turn-withdraw path";
 }
 
+// When only the blade moved inside its tets, their temporary points move in place: no vertex or
+// tet is made, so a long cut does not grow the mesh's arrays pose by pose.
+TEST(ProgressiveCutting, PointsThatOnlyMoveKeepTheirVerticesAndTets) {
+  const ScriptedPath path = ProgressiveCasePaths().front();
+  ASSERT_EQ(path.name, "through");
+  TetMesh m = ScriptedPathLattice();
+  Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kProgressive);
+  std::vector<BladePose> poses = {path.poses.front()};  // ten poses per step of the path
+  for (std::size_t i = 1; i < path.poses.size(); ++i) {
+    const BladePose &a = path.poses[i - 1], &b = path.poses[i];
+    for (int k = 1; k <= 10; ++k) {
+      const double s = k / 10.0;
+      poses.push_back({a.time + s * (b.time - a.time), a.tip + s * (b.tip - a.tip),
+                       a.heel + s * (b.heel - a.heel)});
+    }
+  }
+  std::size_t moving_poses = 0;
+  for (const BladePose& pose : poses) {
+    const CutStatistics before = cutter.statistics();
+    const std::uint32_t vertices = m.vertex_index_bound(), tets = m.tet_index_bound();
+    const std::vector<VertexId> live(m.vertices().begin(), m.vertices().end());
+    ASSERT_TRUE(cutter.ApplyPose(pose).ok());
+    const CutStatistics& after = cutter.statistics();
+    if (after.moved == before.moved || after.rebuilt != before.rebuilt ||
+        after.cut_tets != before.cut_tets || after.held_poses != before.held_poses) {
+      continue;
+    }
+    ++moving_poses;
+    EXPECT_EQ(m.vertex_index_bound(), vertices);
+    EXPECT_EQ(m.tet_index_bound(), tets);
+    EXPECT_EQ(std::vector<VertexId>(m.vertices().begin(), m.vertices().end()), live);
+  }
+  EXPECT_GT(moving_poses, 10u);
+}
+
 // The opening keeps up with the blade: on the straight through-cut the lag is zero at every
 // pose progressively, and grows with the cut when deferred.
 TEST(ProgressiveCutting, TheOpeningKeepsUpWithTheBlade) {

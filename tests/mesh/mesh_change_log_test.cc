@@ -38,6 +38,28 @@ TEST(MeshChangeLog, RecordsNetChangesSinceAMark) {
   EXPECT_TRUE(mesh.change_log().ChangesSince(mesh.change_log().Mark())->empty());
 }
 
+TEST(MeshChangeLog, ReportsVerticesMovedButNotAddedOrRemoved) {
+  TetMesh mesh;
+  const VertexId a = mesh.AddVertex({0, 0, 0});
+  const VertexId b = mesh.AddVertex({1, 0, 0});
+  const ChangeMark start = mesh.change_log().Mark();
+  ASSERT_TRUE(mesh.MoveVertex(a, {0, 0, 1}, {0, 0, 2}).ok());
+  const VertexId c = mesh.AddVertex({2, 0, 0});
+  ASSERT_TRUE(mesh.MoveVertex(c, {3, 0, 0}, {3, 0, 0}).ok());  // added: listed as added
+  ASSERT_TRUE(mesh.MoveVertex(b, {1, 1, 0}, {1, 1, 0}).ok());
+  ASSERT_TRUE(mesh.RemoveVertex(b).ok());  // removed: listed as removed
+  EXPECT_EQ(mesh.rest_position(a), Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(mesh.current_position(a), Eigen::Vector3d(0, 0, 2));
+
+  absl::StatusOr<MeshChanges> changes = mesh.change_log().ChangesSince(start);
+  ASSERT_TRUE(changes.ok());
+  EXPECT_THAT(changes->moved_vertices, ElementsAre(a));
+  EXPECT_THAT(changes->added_vertices, ElementsAre(c));
+  EXPECT_THAT(changes->removed_vertices, ElementsAre(b));
+  EXPECT_FALSE(changes->empty());
+  EXPECT_EQ(mesh.MoveVertex(b, {0, 0, 0}, {0, 0, 0}).code(), absl::StatusCode::kNotFound);
+}
+
 TEST(MeshChangeLog, DiscardedHistoryIsAnErrorNotAWrongAnswer) {
   MeshChangeLog log;
   log.RecordAddedVertex(VertexId{0});
