@@ -545,14 +545,14 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       VertexId v;
       if (old != temporary_points_.end()) {
         v = old->second.vertex;
-        if (old->second.weights != weights || old->second.from != from) {
+        if (old->second.weights != weights) {  // a place's `from` is always the same
           moved_points.try_emplace(v, Before{mesh_->rest_position(v), mesh_->current_position(v)});
           MoveMadeVertex(v, from, weights);
         }
       } else {
         v = MakeVertex(from, weights);
       }
-      points[place] = {v, from, weights, on_blade};
+      points[place] = {v, weights, on_blade};
       return v;
     };
     // Puts the points this attempt moved back where they were.
@@ -562,9 +562,10 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         assert(s.ok());
         (void)s;
       }
-      std::erase_if(made_vertices_, [&, k = std::size_t{0}](const MadeVertex& m) mutable {
-        return k++ >= made_before && moved_points.contains(m.vertex);
-      });
+      made_vertices_.erase(
+          std::remove_if(made_vertices_.begin() + made_before, made_vertices_.end(),
+                         [&](const MadeVertex& m) { return moved_points.contains(m.vertex); }),
+          made_vertices_.end());
     };
     // Takes back the vertices this attempt made that no tet uses.
     const auto take_back_unused = [&] {
@@ -717,10 +718,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
             const bool uses = std::any_of(
                 keep.split.tets.begin(), keep.split.tets.end(),
                 [&](const mesh::TetVertices& piece) { return mesh::TetHasVertex(piece, v); });
-            if (uses) {
-              kept_points.push_back(
-                  {entry.first, {v, entry.second.from, entry.second.weights, false}});
-            }
+            if (uses) kept_points.push_back({entry.first, {v, entry.second.weights, false}});
           }
           plans.push_back(std::move(keep));
           continue;

@@ -165,9 +165,8 @@ class Cutter {
   // A temporary point of the applied subdivisions.
   struct TemporaryPoint {
     mesh::VertexId vertex;
-    std::array<mesh::VertexId, 4> from;  // the face's vertices (key order) or the tet's corners
-    Eigen::Vector4d weights;             // on `from`
-    bool on_blade = true;                // false for the middle of a crack's face points
+    Eigen::Vector4d weights;  // on the face's vertices (key order) or the tet's corners
+    bool on_blade = true;     // false for the middle of a crack's face points
   };
 
   Cutter(mesh::TetMesh* mesh, TetGrid grid, const BladeLimits& limits, CutMode mode)
