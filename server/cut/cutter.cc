@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "geometry/moving_crossing.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
 #include "mesh/face_tiling.h"
@@ -125,7 +126,7 @@ absl::StatusOr<Cutter> Cutter::Create(mesh::TetMesh* mesh, double cell_size,
                                       const BladeLimits& limits, CutMode mode) {
   absl::StatusOr<TetGrid> grid = TetGrid::Build(*mesh, cell_size, 0.25 * cell_size);
   if (!grid.ok()) return grid.status();
-  return Cutter(mesh, *std::move(grid), limits, mode);
+  return Cutter(mesh, *std::move(grid), cell_size, limits, mode);
 }
 
 absl::Status Cutter::ApplyPose(const BladePose& pose) {
@@ -139,7 +140,7 @@ absl::Status Cutter::ApplyPose(const BladePose& pose) {
   }
   if (mode_ == CutMode::kProgressive) UpdateOpenTets(&pose);
   previous_ = pose;
-  return absl::OkStatus();
+  return RememberPositionsNear(pose);
 }
 
 void Cutter::Finish() {
@@ -152,6 +153,7 @@ void Cutter::Finish() {
     UpdateOpenTets(nullptr);
   }
   previous_.reset();
+  positions_at_previous_.clear();
 }
 
 TetId Cutter::OwnerOf(TetId t) const {
@@ -197,11 +199,44 @@ std::vector<TetId> Cutter::TetsWith(std::span<const VertexId> vertices) const {
   return tets;
 }
 
+absl::Status Cutter::RememberPositionsNear(const BladePose& pose) {
+  positions_at_previous_.clear();
+  if (absl::Status s = grid_.RefreshTopology(); !s.ok()) return s;  // the tets this pose made
+  for (const TetId t : grid_.Candidates(pose.tip.cwiseMin(pose.heel).array() - memory_margin_,
+                                        pose.tip.cwiseMax(pose.heel).array() + memory_margin_)) {
+    for (const VertexId v : mesh_->tet_even_if_removed(t)) {
+      if (mesh_->IsAlive(v))
+        positions_at_previous_.try_emplace(Index(v), mesh_->current_position(v));
+    }
+  }
+  return absl::OkStatus();
+}
+
+Eigen::Vector3d Cutter::MovedSincePrevious(VertexId v) const {
+  const auto it = positions_at_previous_.find(Index(v));
+  if (it == positions_at_previous_.end()) return Eigen::Vector3d::Zero();
+  return mesh_->current_position(v) - it->second;
+}
+
 std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to) {
-  const std::array<std::array<Eigen::Vector3d, 3>, 2> swept = {
-      {{from.tip, from.heel, to.heel}, {from.tip, to.heel, to.tip}}};
+  // The tissue may have moved since the previous pose: every point is taken to move straight
+  // from where it was then to where it is now, like the blade, and a hit is where the two met.
+  double farthest = 0;  // squared first
+  for (const auto& [v, then] : positions_at_previous_) {
+    if (mesh_->IsAlive(VertexId(v))) {
+      farthest = std::max(farthest, (mesh_->current_position(VertexId(v)) - then).squaredNorm());
+    }
+  }
+  farthest = std::sqrt(farthest);
+  const auto motion = [&](VertexId v) {
+    const Eigen::Vector3d& x = mesh_->current_position(v);
+    return geometry::Motion{x - MovedSincePrevious(v), x};
+  };
+  const geometry::Motion tip{from.tip, to.tip}, heel{from.heel, to.heel};
   Eigen::Vector3d low = from.tip.cwiseMin(from.heel).cwiseMin(to.tip).cwiseMin(to.heel);
   Eigen::Vector3d high = from.tip.cwiseMax(from.heel).cwiseMax(to.tip).cwiseMax(to.heel);
+  low.array() -= farthest;
+  high.array() += farthest;
   absl::flat_hash_set<EdgeKey> tested_edges;
   absl::flat_hash_set<FaceKey, FaceKeyHash> tested_faces;
   std::vector<EdgeKey> new_edges;
@@ -228,27 +263,22 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
       if (edge_hits_.contains(key) || !tested_edges.insert(key).second) continue;
       const VertexId lo = Index(v[i]) < Index(v[j]) ? v[i] : v[j];
       const VertexId hi = lo == v[i] ? v[j] : v[i];
-      for (const auto& tri : swept) {
-        const auto crossing = geometry::IntersectSegmentTriangle(
-            mesh_->current_position(lo), mesh_->current_position(hi), tri[0], tri[1], tri[2]);
-        if (!crossing) continue;
-        if (crossing->t < kDegenerate || crossing->t > 1 - kDegenerate) {
-          ++statistics_.degenerate_hits;
-        } else if (const std::array<VertexId, 2> ends = {lo, hi}; !Realisable(ends)) {
-          ++statistics_.unrealisable_hits;
-        } else {
-          edge_hits_[key] = {crossing->t};
-          new_edges.push_back(key);
-        }
-        break;
+      const auto crossing = geometry::FirstEdgeCrossing(motion(lo), motion(hi), tip, heel);
+      if (!crossing) continue;
+      if (crossing->fraction < kDegenerate || crossing->fraction > 1 - kDegenerate) {
+        ++statistics_.degenerate_hits;
+      } else if (const std::array<VertexId, 2> ends = {lo, hi}; !Realisable(ends)) {
+        ++statistics_.unrealisable_hits;
+      } else {
+        edge_hits_[key] = {crossing->fraction};
+        new_edges.push_back(key);
       }
     }
     for (const auto& face : mesh::kTetFaces) {
       const FaceKey key = MakeFaceKey(v, face);
       if (face_hits_.contains(key) || !tested_faces.insert(key).second) continue;
-      const auto crossing = geometry::IntersectSegmentTriangle(
-          from.tip, to.tip, mesh_->current_position(key[0]), mesh_->current_position(key[1]),
-          mesh_->current_position(key[2]));
+      const auto crossing =
+          geometry::FirstPointCrossing(tip, motion(key[0]), motion(key[1]), motion(key[2]));
       if (!crossing) continue;
       if (crossing->barycentric.minCoeff() < kDegenerate) {
         ++statistics_.degenerate_hits;

@@ -169,12 +169,23 @@ class Cutter {
     bool on_blade = true;     // false for the middle of a crack's face points
   };
 
-  Cutter(mesh::TetMesh* mesh, TetGrid grid, const BladeLimits& limits, CutMode mode)
-      : mesh_(mesh), grid_(std::move(grid)), limits_(limits), mode_(mode) {}
+  Cutter(mesh::TetMesh* mesh, TetGrid grid, double cell_size, const BladeLimits& limits,
+         CutMode mode)
+      : mesh_(mesh),
+        grid_(std::move(grid)),
+        memory_margin_(0.25 * cell_size),
+        limits_(limits),
+        mode_(mode) {}
 
   // Records the hits of the swept surface from `from` to `to`, and returns the tets near it
   // (progressive: the open tets for their pieces).
   std::vector<mesh::TetId> RecordHits(const BladePose& from, const BladePose& to);
+  // Keeps the current positions of the vertices within `memory_margin_` of the blade.
+  absl::Status RememberPositionsNear(const BladePose& pose);
+  // How far `v` moved since the previous pose, m: zero for a vertex made since or farther
+  // than `memory_margin_` from the blade then (tissue is taken to move less than that between
+  // poses).
+  Eigen::Vector3d MovedSincePrevious(mesh::VertexId v) const;
   bool BladeInside(const mesh::TetVertices& corners, const BladePose& pose) const;
   bool BladeInside(mesh::TetId t, const BladePose& pose) const {
     return BladeInside(mesh_->tet(t), pose);
@@ -226,9 +237,13 @@ class Cutter {
 
   mesh::TetMesh* mesh_;
   TetGrid grid_;
+  double memory_margin_;  // m
   BladeLimits limits_;
   CutMode mode_;
   std::optional<BladePose> previous_;
+  // The current positions, when the previous pose was applied, of the vertices then near the
+  // blade (by index).
+  absl::flat_hash_map<std::uint32_t, Eigen::Vector3d> positions_at_previous_;
   absl::flat_hash_map<EdgeKey, EdgeHit> edge_hits_;
   absl::flat_hash_map<FaceKey, FaceHit, FaceKeyHash> face_hits_;
   // Groups of unsplit tets with hits, joined through shared hits: a union-find forest over the
