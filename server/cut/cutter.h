@@ -1,10 +1,13 @@
 // Cuts a tet mesh along a blade's path (the paper's sections 3 and 4).
 //
-// Per pose, the swept surface between the previous and the new blade edge is tested against
-// the edges of the tets near it (found through a TetGrid on the deformed positions), and the
-// tip's path against their faces, on current positions. A hit is stored once, as a fraction
-// along the edge or barycentric coordinates on the face; the first crossing wins. New
-// vertices take their rest and current positions from the same coordinates.
+// Per pose, the blade edge moves straight from its previous place to its new one, and so does
+// each vertex near it, from its current position at the previous pose to its current position
+// now (the tissue may have moved in between). An edge of a tet near (found through a TetGrid
+// on the deformed positions) is hit where it met the blade edge in that interval, a face where
+// the tip went through it (geometry/moving_crossing.h): only the relative motion cuts. A hit
+// is stored once, as a fraction along the edge or barycentric coordinates on the face; the
+// first crossing wins. New vertices take their rest and current positions from the same
+// coordinates.
 //
 // Progressive: after every pose, each tet with hits is subdivided at once. While
 // the blade is in it, the subdivision is temporary: the points where the blade edge crosses
@@ -177,7 +180,7 @@ class Cutter {
         limits_(limits),
         mode_(mode) {}
 
-  // Records the hits of the swept surface from `from` to `to`, and returns the tets near it
+  // Records the hits of the blade moving from `from` to `to`, and returns the tets near it
   // (progressive: the open tets for their pieces).
   std::vector<mesh::TetId> RecordHits(const BladePose& from, const BladePose& to);
   // Keeps the current positions of the vertices within `memory_margin_` of the blade.
