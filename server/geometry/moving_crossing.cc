@@ -6,7 +6,6 @@
 #include <cmath>
 #include <initializer_list>
 #include <utility>
-#include <vector>
 
 namespace kerf::geometry {
 namespace {
@@ -15,10 +14,24 @@ double Det(const Eigen::Vector3d& u, const Eigen::Vector3d& v, const Eigen::Vect
   return u.dot(v.cross(w));
 }
 
+// At most four times, with no allocation (this runs for every edge near the blade).
+class Times {
+ public:
+  void Add(double t) { at_[count_++] = t; }
+  double* begin() { return at_.data(); }
+  double* end() { return at_.data() + count_; }
+  std::size_t size() const { return count_; }
+  double operator[](std::size_t k) const { return at_[k]; }
+
+ private:
+  std::array<double, 4> at_;
+  std::size_t count_ = 0;
+};
+
 // The times in (0, 1], ascending, at which det(u(t), v(t), w(t)) changes sign (or reaches 0
 // from one side), each vector moving linearly. The determinant is a cubic in t; between the
 // roots of its derivative it is monotone, and each sign change there is found by bisection.
-std::vector<double> CoplanarTimes(const Motion& u, const Motion& v, const Motion& w) {
+Times CoplanarTimes(const Motion& u, const Motion& v, const Motion& w) {
   const Eigen::Vector3d du = u.to - u.from, dv = v.to - v.from, dw = w.to - w.from;
   const std::array<double, 4> c = {
       Det(u.from, v.from, w.from),
@@ -33,8 +46,8 @@ std::vector<double> CoplanarTimes(const Motion& u, const Motion& v, const Motion
   // Evaluated on the points themselves, so that at the ends it is exactly the determinant of
   // the positions given (a blade reaching an edge's plane exactly at a pose meets it then).
   const auto f = [&](double t) { return Det(u.At(t), v.At(t), w.At(t)); };
-  std::vector<double> ends = {0, 1};
-  // Roots of f' = 3 c3 t^2 + 2 c2 t + c1 inside (0, 1).
+  // Roots of f' = 3 c3 t^2 + 2 c2 t + c1 inside (0, 1), ascending, between 0 and 1.
+  Times extrema;
   const double qa = 3 * c[3], qb = 2 * c[2], qc = c[1];
   if (qa != 0) {
     const double disc = qb * qb - 4 * qa * qc;
@@ -42,21 +55,25 @@ std::vector<double> CoplanarTimes(const Motion& u, const Motion& v, const Motion
       const double root = std::sqrt(disc);
       // The numerically stable pair of roots.
       const double qq = -0.5 * (qb + std::copysign(root, qb));
-      for (const double t : {qq / qa, qq != 0 ? qc / qq : 0.0}) {
-        if (t > 0 && t < 1) ends.push_back(t);
+      const double r1 = qq / qa, r2 = qq != 0 ? qc / qq : 0.0;
+      for (const double t : {std::min(r1, r2), std::max(r1, r2)}) {
+        if (t > 0 && t < 1) extrema.Add(t);
       }
     }
   } else if (qb != 0) {
     const double t = -qc / qb;
-    if (t > 0 && t < 1) ends.push_back(t);
+    if (t > 0 && t < 1) extrema.Add(t);
   }
-  std::sort(ends.begin(), ends.end());
-  std::vector<double> times;
+  Times ends;
+  ends.Add(0);
+  for (const double t : extrema) ends.Add(t);
+  ends.Add(1);
+  Times times;
   for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
     double low = ends[k], high = ends[k + 1];
     const double f_low = f(low), f_high = f(high);
     if (f_high == 0) {
-      times.push_back(high);
+      times.Add(high);
       continue;
     }
     if (f_low == 0 || (f_low > 0) == (f_high > 0)) continue;
@@ -64,7 +81,7 @@ std::vector<double> CoplanarTimes(const Motion& u, const Motion& v, const Motion
       const double mid = 0.5 * (low + high);
       ((f(mid) > 0) == (f_low > 0) ? low : high) = mid;
     }
-    times.push_back(high);
+    times.Add(high);
   }
   return times;
 }
