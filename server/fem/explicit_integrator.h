@@ -6,35 +6,19 @@
 
 #include <vector>
 
-#include "fem/boundary_conditions.h"
-#include "fem/tensor_mass_model.h"
+#include "fem/time_integrator.h"
 
 namespace kerf::fem {
 
-// Displacement and velocity of every vertex, indexed by vertex index.
-struct DynamicState {
-  std::vector<Eigen::Vector3d> displacement;
-  std::vector<Eigen::Vector3d> velocity;
-  double time = 0;
-
-  // Zero displacement and velocity for every vertex of the model, with prescribed components
-  // at their values.
-  static DynamicState AtRest(const TensorMassModel& model, const BoundaryConditions& bc);
-};
-
 // Reusable buffers so that a step allocates nothing.
-class ExplicitIntegrator {
+class ExplicitIntegrator : public TimeIntegrator {
  public:
   // bc must be valid for the model's mesh (see ValidateBoundaryConditions).
   ExplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc);
 
-  // One step of dt (s). Prescribed components keep their values and zero velocity; vertices
-  // with no mass (used by no tet) do not move. O(vertices + edges).
-  void Step(double dt, DynamicState* state);
-
-  // Rebuilds what depends on the model's mass or the conditions (after the model synced
-  // with a changed mesh).
-  void Refresh(const BoundaryConditions& bc);
+  // O(active vertices + edges).
+  void Step(double dt, DynamicState* state) override;
+  void Refresh(const BoundaryConditions& bc) override;
 
  private:
   const TensorMassModel* model_;
@@ -44,9 +28,6 @@ class ExplicitIntegrator {
   std::vector<Eigen::Vector3d> damped_u_;  // u + beta v
   std::vector<PrescribedDisplacement> prescribed_;
 };
-
-// Kinetic energy v^T M v / 2 plus elastic energy u^T K u / 2.
-double MechanicalEnergy(const TensorMassModel& model, const DynamicState& state);
 
 // The largest stable symplectic-Euler step 2 / omega_max, omega_max^2 the largest eigenvalue
 // of M^-1 K, by power iteration (relative accuracy ~1e-3, iterations capped at 500).

@@ -48,7 +48,12 @@ absl::StatusOr<TensorMassModel> TensorMassModel::Create(const mesh::TetMesh& mes
   }
   TensorMassModel model(mesh, material);
   model.GrowToMesh();
-  for (const TetId t : mesh.tets()) model.Accumulate(t, +1);
+  std::vector<TetId> tets;
+  for (const TetId t : mesh.tets()) {
+    model.Accumulate(t, +1);
+    tets.push_back(t);
+  }
+  model.UpdateActive(tets, {});
   model.synced_ = mesh.change_log().Mark();
   return model;
 }
@@ -79,13 +84,16 @@ absl::Status TensorMassModel::SyncWithMesh() {
   for (const TetId t : changes->added_tets) Accumulate(t, +1);
   // A vertex no tet uses any more (a temporary point of a progressive cut) has no mass or
   // stiffness: exactly, not the rounding left by adding and taking away.
+  std::vector<VertexId> emptied;
   for (const TetId t : changes->removed_tets) {
     for (const VertexId v : mesh_->tet_even_if_removed(t)) {
       if (mesh_->IsAlive(v) && !mesh_->TetsAround(v).empty()) continue;
       masses_[Index(v)] = 0;
       vertex_tensors_[Index(v)].setZero();
+      emptied.push_back(v);
     }
   }
+  UpdateActive(changes->added_tets, emptied);
   synced_ = mesh_->change_log().Mark();
   return absl::OkStatus();
 }
@@ -94,6 +102,30 @@ void TensorMassModel::GrowToMesh() {
   const std::size_t n = mesh_->vertex_index_bound();
   vertex_tensors_.resize(n, Eigen::Matrix3d::Zero());
   masses_.resize(n, 0.0);
+  is_active_.resize(n, false);
+}
+
+void TensorMassModel::UpdateActive(std::span<const TetId> added,
+                                   std::span<const VertexId> emptied) {
+  bool removed = false;
+  for (const VertexId v : emptied) {
+    removed = removed || is_active_[Index(v)];
+    is_active_[Index(v)] = false;
+  }
+  if (removed) {
+    std::erase_if(active_, [&](std::uint32_t i) { return !is_active_[i]; });
+  }
+  const std::size_t old_end = active_.size();
+  for (const TetId t : added) {
+    for (const VertexId v : mesh_->tet_even_if_removed(t)) {
+      if (is_active_[Index(v)] || masses_[Index(v)] <= 0) continue;
+      is_active_[Index(v)] = true;
+      active_.push_back(Index(v));
+    }
+  }
+  std::sort(active_.begin() + static_cast<std::ptrdiff_t>(old_end), active_.end());
+  std::inplace_merge(active_.begin(), active_.begin() + static_cast<std::ptrdiff_t>(old_end),
+                     active_.end());
 }
 
 void TensorMassModel::Accumulate(TetId t, double sign) {
@@ -138,7 +170,7 @@ const EdgeTensor* TensorMassModel::FindEdge(VertexId a, VertexId b) const {
 void TensorMassModel::MultiplyStiffness(std::span<const Eigen::Vector3d> u,
                                         std::span<Eigen::Vector3d> f) const {
   assert(u.size() >= vertex_tensors_.size() && f.size() >= vertex_tensors_.size());
-  for (std::size_t i = 0; i < vertex_tensors_.size(); ++i) f[i] = vertex_tensors_[i] * u[i];
+  for (const std::uint32_t i : active_) f[i] = vertex_tensors_[i] * u[i];
   for (const EdgeTensor& e : edges_) {
     f[Index(e.a)] += e.k_ab * u[Index(e.b)];
     f[Index(e.b)] += e.k_ab.transpose() * u[Index(e.a)];
@@ -170,7 +202,7 @@ double TensorMassModel::ElasticEnergy(std::span<const Eigen::Vector3d> u) const 
   std::vector<Eigen::Vector3d> f(vertex_tensors_.size());
   MultiplyStiffness(u, f);
   double energy = 0;
-  for (std::size_t i = 0; i < f.size(); ++i) energy += 0.5 * u[i].dot(f[i]);
+  for (const std::uint32_t i : active_) energy += 0.5 * u[i].dot(f[i]);
   return energy;
 }
 

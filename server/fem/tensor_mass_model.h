@@ -47,8 +47,9 @@ class TensorMassModel {
   absl::Status SyncWithMesh();
 
   // f = K u: the paper's Eq. 2, f_i = K_ii u_i + sum_j K_ij u_j. u and f are indexed by vertex
-  // index and must hold mesh.vertex_index_bound() entries. The elastic force the body exerts
-  // on its vertices is -f. O(vertices + edges).
+  // index and must hold mesh.vertex_index_bound() entries. Only the entries of active vertices
+  // are written (K has nothing elsewhere); the others are left as they were. The elastic force
+  // the body exerts on its vertices is -f. O(active vertices + edges).
   void MultiplyStiffness(std::span<const Eigen::Vector3d> u, std::span<Eigen::Vector3d> f) const;
 
   // The global 3n x 3n stiffness assembled from the tensors, n = vertex_index_bound().
@@ -67,6 +68,9 @@ class TensorMassModel {
   double mass(mesh::VertexId v) const { return masses_[mesh::Index(v)]; }
   std::span<const double> masses() const { return masses_; }
   std::span<const EdgeTensor> edges() const { return edges_; }
+  // The indices of the vertices some tet uses (with mass and stiffness), ascending. Mesh ids
+  // are never reused, so after many cuts these can be far fewer than vertex_count().
+  std::span<const std::uint32_t> active_vertices() const { return active_; }
   // The tensor of the edge between a and b, or nullptr if no tet has that edge.
   const EdgeTensor* FindEdge(mesh::VertexId a, mesh::VertexId b) const;
 
@@ -74,6 +78,9 @@ class TensorMassModel {
   TensorMassModel(const mesh::TetMesh& mesh, const Material& material);
 
   void GrowToMesh();
+  // Updates active_ after tets were added (their vertices become active) and vertices lost
+  // their last tet (`emptied`). O(active + changed).
+  void UpdateActive(std::span<const mesh::TetId> added, std::span<const mesh::VertexId> emptied);
   // Adds (sign +1, at its rest corners now) or subtracts (sign -1, at the corners it was added
   // with) the contributions of tet t.
   void Accumulate(mesh::TetId t, double sign);
@@ -85,6 +92,8 @@ class TensorMassModel {
   std::vector<Eigen::Matrix3d> vertex_tensors_;
   std::vector<double> masses_;
   std::vector<EdgeTensor> edges_;
+  std::vector<std::uint32_t> active_;
+  std::vector<bool> is_active_;                                  // by vertex index
   absl::flat_hash_map<std::uint64_t, std::uint32_t> edge_slot_;  // edge key -> index in edges_
   // The rest corners each live tet was added with (by tet index), to take it away exactly
   // after its vertices moved.

@@ -21,7 +21,7 @@ struct Scene {
   fem::Material material;
   fem::BoundaryConditions conditions;
   kerf::v1::Integration::Method method = kerf::v1::Integration::SYMPLECTIC_EULER;
-  double time_step = 0;   // s; 0: 0.9 of the estimated critical step
+  double time_step = 0;   // s; 0 chooses (see kerf.v1.Integration.time_step)
   kerf::v1::Needs needs;  // carried for the service; the simulation itself needs no output
   kerf::v1::Cutting::Mode cut_mode = kerf::v1::Cutting::DEFERRED;
 };

@@ -1,5 +1,7 @@
 #include "sim/simulation.h"
 
+#include "fem/explicit_integrator.h"
+#include "fem/implicit_integrator.h"
 #include "fem/static_solver.h"
 #include "mesh/mesh_quality.h"
 
@@ -16,14 +18,18 @@ absl::StatusOr<std::unique_ptr<Simulation>> Simulation::Create(Scene scene) {
     return s;
   }
   sim->critical_time_step_ = fem::EstimateCriticalTimeStep(*sim->model_);
-  sim->time_step_ =
-      sim->scene_.time_step > 0 ? sim->scene_.time_step : 0.9 * sim->critical_time_step_;
+  sim->time_step_ = sim->scene_.time_step > 0 ? sim->scene_.time_step
+                    : sim->implicit()         ? kImplicitTimeStep
+                                              : 0.9 * sim->critical_time_step_;
   sim->state_ = fem::DynamicState::AtRest(*sim->model_, sim->scene_.conditions);
   if (sim->scene_.method == kerf::v1::Integration::STATIC) {
     absl::StatusOr<std::vector<Eigen::Vector3d>> u =
         fem::SolveStaticEquilibrium(*sim->model_, sim->scene_.conditions);
     if (!u.ok()) return u.status();
     sim->state_.displacement = *std::move(u);
+  } else if (sim->implicit()) {
+    sim->integrator_ =
+        std::make_unique<fem::ImplicitIntegrator>(*sim->model_, sim->scene_.conditions);
   } else {
     sim->integrator_ =
         std::make_unique<fem::ExplicitIntegrator>(*sim->model_, sim->scene_.conditions);
@@ -79,7 +85,7 @@ absl::Status Simulation::FollowCut() {
     state_.velocity[mesh::Index(m.vertex)] = v;
   }
   if (integrator_ != nullptr) integrator_->Refresh(scene_.conditions);
-  if (scene_.time_step == 0) {
+  if (scene_.time_step == 0 && !implicit()) {
     critical_time_step_ = fem::EstimateCriticalTimeStep(*model_);
     time_step_ = 0.9 * critical_time_step_;
   }

@@ -7,8 +7,8 @@
 
 #include "absl/status/statusor.h"
 #include "cut/cutter.h"
-#include "fem/explicit_integrator.h"
 #include "fem/tensor_mass_model.h"
+#include "fem/time_integrator.h"
 #include "sim/scene.h"
 
 namespace kerf::sim {
@@ -19,14 +19,16 @@ class Simulation {
   // conditions do not fit its mesh; FAILED_PRECONDITION for a STATIC scene that is not held.
   static absl::StatusOr<std::unique_ptr<Simulation>> Create(Scene scene);
 
-  // Advances by time_step() (SYMPLECTIC_EULER), or does nothing (STATIC: solved in Create).
+  // Advances by time_step() (SYMPLECTIC_EULER, IMPLICIT_EULER), or does nothing (STATIC:
+  // solved in Create).
   // Afterwards the mesh's current positions are rest plus displacement. O(vertices + edges).
   void Step();
 
   // Moves the blade (see cut::Cutter): the mesh is cut where the blade has passed, the
   // elastic model follows incrementally, and the vertices the cut made take displacement and
-  // velocity interpolated from the vertices they came from. With an automatic time step the
-  // step is re-estimated after a cut (small new tets lower the critical step).
+  // velocity interpolated from the vertices they came from. With SYMPLECTIC_EULER and an
+  // automatic time step the step is re-estimated after a cut (small new tets lower the
+  // critical step); IMPLICIT_EULER keeps its step.
   // INVALID_ARGUMENT for a bad pose, which changes nothing.
   absl::Status ApplyBladePose(const cut::BladePose& pose);
   // The blade is withdrawn: everything it cut is opened.
@@ -42,14 +44,18 @@ class Simulation {
   // 2 / omega_max of the model as built (see fem::EstimateCriticalTimeStep).
   double critical_time_step() const { return critical_time_step_; }
 
+  // The automatic step of IMPLICIT_EULER: the haptic rate.
+  static constexpr double kImplicitTimeStep = 1e-3;  // s
+
  private:
   explicit Simulation(Scene scene) : scene_(std::move(scene)) {}
+  bool implicit() const { return scene_.method == kerf::v1::Integration::IMPLICIT_EULER; }
   void UpdateCurrentPositions();
   absl::Status FollowCut();
 
   Scene scene_;  // owns the mesh the model points to; Simulation is not movable
   std::unique_ptr<fem::TensorMassModel> model_;
-  std::unique_ptr<fem::ExplicitIntegrator> integrator_;
+  std::unique_ptr<fem::TimeIntegrator> integrator_;  // null for STATIC
   fem::DynamicState state_;
   double time_step_ = 0;
   double critical_time_step_ = 0;

@@ -144,6 +144,8 @@ void ExpectModelsEqual(const TensorMassModel& a, const TensorMassModel& b) {
     EXPECT_LE((other->k_ab - e.k_ab).norm(), 1e-12 * scale);
     EXPECT_EQ(other->tets, e.tets);
   }
+  EXPECT_EQ(std::vector<std::uint32_t>(a.active_vertices().begin(), a.active_vertices().end()),
+            std::vector<std::uint32_t>(b.active_vertices().begin(), b.active_vertices().end()));
 }
 
 TEST(TensorMassModel, IncrementalChangesEqualARebuildFromScratch) {

@@ -1,0 +1,68 @@
+// Implicit time integration by backward Euler, with lumped mass and Rayleigh damping
+// C = alpha M + beta K:
+//   (M + dt C + dt^2 K) v' = M v + dt (f_external - K u),   u' = u + dt v'.
+// Unconditionally stable: for a fixed model and no external force, the mechanical energy
+// never grows, whatever dt and however small the smallest element. Each step loses
+// (|v' - v|_M^2 + |u' - u|_K^2) / 2 of it, even undamped: backward Euler damps the modes
+// above about 1 / dt. So the model may change between steps (cuts) with no new step
+// estimate.
+//
+// The system is solved by conjugate gradients on the model's own tensors, which the model
+// updates incrementally after cuts (never assembled, never factorised), preconditioned by the
+// inverse of each vertex's 3x3 diagonal block and started from the current velocity.
+#pragma once
+
+#include <vector>
+
+#include "fem/time_integrator.h"
+
+namespace kerf::fem {
+
+struct ImplicitSolveOptions {
+  // The solve stops when |residual| <= tolerance |terms of the right-hand side| (Euclidean,
+  // over the free components; the terms |M v| + dt (|f_external| + |K u|) taken apart, since
+  // near equilibrium they cancel) ...
+  double tolerance = 1e-6;
+  // ... or after this many iterations (each one multiply by K).
+  int max_iterations = 1000;
+};
+
+// How the last step's linear solve went.
+struct ImplicitSolveReport {
+  int iterations = 0;
+  double relative_residual = 0;  // |residual| / |terms of the right-hand side|
+};
+
+// Reusable buffers so that a step allocates nothing once the mesh stops growing.
+class ImplicitIntegrator : public TimeIntegrator {
+ public:
+  // bc must be valid for the model's mesh (see ValidateBoundaryConditions).
+  ImplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
+                     ImplicitSolveOptions options = {});
+
+  // O((active vertices + edges) x iterations).
+  void Step(double dt, DynamicState* state) override;
+  void Refresh(const BoundaryConditions& bc) override;
+
+  const ImplicitSolveReport& last_solve() const { return last_solve_; }
+
+ private:
+  // q = S (a M + b K) p, S zeroing the components that do not move.
+  void MultiplySystem(double a, double b, const std::vector<Eigen::Vector3d>& p,
+                      std::vector<Eigen::Vector3d>* q);
+  // z = S P^-1 r, P the system's 3x3 diagonal blocks.
+  void Precondition(const std::vector<Eigen::Vector3d>& r, std::vector<Eigen::Vector3d>* z) const;
+  void PrepareFor(double dt);
+
+  const TensorMassModel* model_;
+  ImplicitSolveOptions options_;
+  std::vector<Eigen::Vector3d> external_;
+  std::vector<PrescribedDisplacement> prescribed_;
+  std::vector<Eigen::Vector3d> free_;  // per component: 1 if it moves, 0 if held or massless
+  std::vector<Eigen::Matrix3d> inverse_diagonal_;
+  double prepared_dt_ = 0;  // the dt inverse_diagonal_ is for; 0 after a refresh
+  std::vector<Eigen::Vector3d> rhs_, residual_, direction_, preconditioned_, product_, stiff_;
+  ImplicitSolveReport last_solve_;
+};
+
+}  // namespace kerf::fem
