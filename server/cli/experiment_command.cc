@@ -8,7 +8,9 @@
 #include "cut/progressive_case_paths.h"
 #include "embedded_text.h"
 #include "kerf/v1/cut_report.pb.h"
+#include "kerf/v1/live_cut_report.pb.h"
 #include "mesh/mesh_quality.h"
+#include "sim/live_cut.h"
 
 namespace kerf::cli {
 namespace {
@@ -92,18 +94,86 @@ absl::StatusOr<std::string> ProgressiveCases(bool json) {
   return out;
 }
 
+// Scene lattice-tension cut along lattice-straight while it moves, per integrator and cut
+// mode: explicit at the real-time step of 1 ms (no protection), explicit at 0.9 of the
+// critical step re-estimated after every cut, and backward Euler at 1 ms.
+absl::StatusOr<std::string> LiveCut(bool json) {
+  const sim::LiveCutOptions options;
+  kerf::v1::LiveCutExperiment experiment;
+  experiment.set_scene("lattice-tension");
+  experiment.set_path("lattice-straight");
+  experiment.set_settle_seconds(options.settle_seconds);
+  experiment.set_slow_down(options.slow_down);
+  experiment.set_pose_rate_hz(options.pose_rate_hz);
+  experiment.set_blow_up_energy_ratio(options.blow_up_energy_ratio);
+  const std::optional<absl::string_view> json_path =
+      FindEmbeddedText(EmbeddedBladePaths(), experiment.path());
+  absl::StatusOr<std::vector<cut::BladePose>> poses =
+      cut::ParseBladePathJson(*json_path, experiment.path(), cut::BladeLimits{});
+  if (!poses.ok()) return poses.status();
+  struct Integration {
+    kerf::v1::Integration::Method method;
+    double time_step;  // s; 0: the scene's automatic step
+    const char* name;
+  };
+  for (const Integration& integration :
+       {Integration{kerf::v1::Integration::SYMPLECTIC_EULER, 1e-3, "SYMPLECTIC_EULER, 1 ms"},
+        Integration{kerf::v1::Integration::SYMPLECTIC_EULER, 0,
+                    "SYMPLECTIC_EULER, 0.9 x critical, re-estimated"},
+        Integration{kerf::v1::Integration::IMPLICIT_EULER, 1e-3, "IMPLICIT_EULER, 1 ms"}}) {
+    for (const kerf::v1::Cutting::Mode mode :
+         {kerf::v1::Cutting::DEFERRED, kerf::v1::Cutting::PROGRESSIVE}) {
+      absl::StatusOr<sim::Scene> scene = sim::LoadScene(experiment.scene());
+      if (!scene.ok()) return scene.status();
+      scene->method = integration.method;
+      scene->time_step = integration.time_step;
+      scene->cut_mode = mode;
+      absl::StatusOr<kerf::v1::LiveCutRow> row =
+          sim::RunLiveCut(*std::move(scene), *poses, options);
+      if (!row.ok()) return row.status();
+      row->set_integration(integration.name);
+      row->set_cut_mode(mode == kerf::v1::Cutting::DEFERRED ? "deferred" : "progressive");
+      *experiment.add_rows() = *std::move(row);
+    }
+  }
+  if (json) return FormatProtoJson(experiment);
+  std::string out = absl::StrFormat(
+      "live-cut: %s settled %g s, then cut along %s %g times slower than written, %g poses/s; "
+      "blew up: energy over %g times that at the first pose\n\n"
+      "| integration | cut | blew up | after (s) | largest energy ratio | largest speed (m/s) | "
+      "smallest height (mm) | critical step (us) | step (us) | cut tets | tets after | held | "
+      "dropped | valid | wall s per simulated s |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      experiment.scene(), experiment.settle_seconds(), experiment.path(), experiment.slow_down(),
+      experiment.pose_rate_hz(), experiment.blow_up_energy_ratio());
+  for (const kerf::v1::LiveCutRow& r : experiment.rows()) {
+    absl::StrAppendFormat(&out,
+                          "| %s | %s | %s | %.3f | %.3g | %.3g | %.3g | %.3g | %.4g | %u | %u | %u "
+                          "| %u | %s | %.3g |\n",
+                          r.integration(), r.cut_mode(), r.blew_up() ? "YES" : "no",
+                          r.blew_up_after(), r.largest_energy_ratio(), r.largest_speed(),
+                          1e3 * r.smallest_height(), 1e6 * r.critical_time_step(),
+                          1e6 * r.time_step(), r.cut_tets(), r.tets_after(), r.held_poses(),
+                          r.dropped_hits(), r.valid() ? "yes" : "NO",
+                          r.wall_seconds_per_simulated_second());
+  }
+  return out;
+}
+
 }  // namespace
 
 absl::StatusOr<std::string> RunExperimentCommand(const std::vector<absl::string_view>& args) {
   CommandArgs rest(args);
   const bool json = rest.TakeFlag("--json");
   absl::StatusOr<std::vector<absl::string_view>> name =
-      rest.TakePositionals(1, "kerf experiment lattice-cut|progressive-cases [--json]");
+      rest.TakePositionals(1, "kerf experiment lattice-cut|progressive-cases|live-cut [--json]");
   if (!name.ok()) return name.status();
   if ((*name)[0] == "lattice-cut") return LatticeCut(json);
   if ((*name)[0] == "progressive-cases") return ProgressiveCases(json);
-  return absl::InvalidArgumentError(absl::StrCat("unknown experiment '", (*name)[0],
-                                                 "'; there are: lattice-cut, progressive-cases"));
+  if ((*name)[0] == "live-cut") return LiveCut(json);
+  return absl::InvalidArgumentError(
+      absl::StrCat("unknown experiment '", (*name)[0],
+                   "'; there are: lattice-cut, progressive-cases, live-cut"));
 }
 
 }  // namespace kerf::cli

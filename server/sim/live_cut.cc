@@ -1,0 +1,109 @@
+#include "sim/live_cut.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "fem/explicit_integrator.h"
+#include "geometry/tet_measures.h"
+#include "mesh/mesh_validation.h"
+#include "sim/simulation.h"
+
+namespace kerf::sim {
+namespace {
+
+// The path's pose at time t (s, as written), linear between poses, held after the last.
+cut::BladePose PoseAt(const std::vector<cut::BladePose>& path, double t) {
+  std::size_t k = 0;
+  while (k + 1 < path.size() && path[k + 1].time < t) ++k;
+  cut::BladePose pose = path[k];
+  if (k + 1 < path.size() && t > path[k].time) {
+    const double a = (t - path[k].time) / (path[k + 1].time - path[k].time);
+    pose.tip = (1 - a) * path[k].tip + a * path[k + 1].tip;
+    pose.heel = (1 - a) * path[k].heel + a * path[k + 1].heel;
+  }
+  return pose;
+}
+
+double SmallestHeight(const mesh::TetMesh& mesh) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const mesh::TetId t : mesh.tets()) {
+    const mesh::TetVertices& v = mesh.tet(t);
+    smallest = std::min(
+        smallest, geometry::SmallestHeight(mesh.rest_position(v[0]), mesh.rest_position(v[1]),
+                                           mesh.rest_position(v[2]), mesh.rest_position(v[3])));
+  }
+  return smallest;
+}
+
+double LargestSpeed(const fem::DynamicState& state) {
+  double largest = 0;
+  for (const Eigen::Vector3d& v : state.velocity) largest = std::max(largest, v.norm());
+  return largest;
+}
+
+}  // namespace
+
+absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
+                                                const std::vector<cut::BladePose>& path,
+                                                const LiveCutOptions& options) {
+  if (scene.method == kerf::v1::Integration::STATIC) {
+    return absl::FailedPreconditionError("a live cut needs a dynamic scene, not STATIC");
+  }
+  if (path.empty()) return absl::InvalidArgumentError("the blade path has no pose");
+  absl::StatusOr<std::unique_ptr<Simulation>> created = Simulation::Create(std::move(scene));
+  if (!created.ok()) return created.status();
+  Simulation& sim = **created;
+  double time = 0;
+  auto step_to = [&](double until) {
+    while (time < until) {
+      sim.Step();
+      time += sim.time_step();
+    }
+  };
+  step_to(options.settle_seconds);
+
+  kerf::v1::LiveCutRow row;
+  const double start_energy = fem::MechanicalEnergy(sim.model(), sim.state());
+  const double start_time = time;
+  const double duration = path.back().time * options.slow_down;
+  const double pose_period = 1 / options.pose_rate_hz;
+  double largest_ratio = 1, largest_speed = 0;
+  const auto wall_start = std::chrono::steady_clock::now();
+  for (int n = 0; n * pose_period <= duration + 1e-12; ++n) {
+    const double elapsed = n * pose_period;
+    cut::BladePose pose = PoseAt(path, elapsed / options.slow_down);
+    pose.time = start_time + elapsed;
+    if (absl::Status s = sim.ApplyBladePose(pose); !s.ok()) return s;
+    step_to(start_time + elapsed + pose_period);
+    row.set_poses(n + 1);
+    const double ratio = fem::MechanicalEnergy(sim.model(), sim.state()) / start_energy;
+    largest_speed = std::max(largest_speed, LargestSpeed(sim.state()));
+    largest_ratio = std::isfinite(ratio) ? std::max(largest_ratio, ratio) : ratio;
+    if (!std::isfinite(ratio) || ratio > options.blow_up_energy_ratio) {
+      row.set_blew_up(true);
+      row.set_blew_up_after(elapsed + pose_period);
+      break;
+    }
+  }
+  if (!row.blew_up()) {
+    if (absl::Status s = sim.WithdrawBlade(); !s.ok()) return s;
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  row.set_wall_seconds_per_simulated_second(wall / (time - start_time));
+  row.set_largest_energy_ratio(largest_ratio);
+  row.set_largest_speed(largest_speed);
+  row.set_smallest_height(SmallestHeight(sim.mesh()));
+  row.set_critical_time_step(fem::EstimateCriticalTimeStep(sim.model()));
+  row.set_time_step(sim.time_step());
+  const cut::CutStatistics& stats = sim.cutter()->statistics();
+  row.set_cut_tets(static_cast<std::uint32_t>(stats.cut_tets));
+  row.set_tets_after(static_cast<std::uint32_t>(sim.mesh().tet_count()));
+  row.set_held_poses(static_cast<std::uint32_t>(stats.held_poses));
+  row.set_dropped_hits(static_cast<std::uint32_t>(stats.dropped_hits));
+  row.set_valid(mesh::ValidateMesh(sim.mesh()).ok());
+  return row;
+}
+
+}  // namespace kerf::sim
