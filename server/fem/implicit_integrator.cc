@@ -33,7 +33,7 @@ void ImplicitIntegrator::Refresh(const BoundaryConditions& bc) {
     free_[i] = Eigen::Vector3d::Constant(model_->masses()[i] > 0 ? 1 : 0);
   }
   for (const PrescribedDisplacement& p : prescribed_) free_[mesh::Index(p.vertex)][p.component] = 0;
-  for (auto* buffer : {&rhs_, &residual_, &direction_, &preconditioned_, &product_, &stiff_}) {
+  for (auto* buffer : {&residual_, &direction_, &preconditioned_, &product_, &stiff_}) {
     buffer->resize(n);
   }
   inverse_diagonal_.resize(n);
@@ -80,20 +80,25 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
   std::vector<Eigen::Vector3d>& v = state->velocity;
   const std::span<const std::uint32_t> active = model_->active_vertices();
 
-  // rhs = S (M v + dt (f - K u)); the solve starts from S v. Near equilibrium f and K u
-  // cancel, so the tolerance is relative to the size of the terms, not to their sum.
-  model_->MultiplyStiffness(state->displacement, stiff_);
+  // The solve starts from S v: its residual, for the change of velocity, is
+  //   S (M v + dt (f - K u) - A v) = S dt (f - alpha M v - K (u + (beta + dt) v)),
+  // one multiply by K. Near equilibrium f and K u cancel, so the tolerance is relative to the
+  // size of the terms, not to their sum.
+  const double lead = material.stiffness_damping + dt;
+  for (const std::uint32_t i : active) {
+    v[i] = v[i].cwiseProduct(free_[i]);
+    product_[i] = state->displacement[i] + lead * v[i];
+  }
+  model_->MultiplyStiffness(product_, stiff_);
   double scale = 0;
   for (const std::uint32_t i : active) {
-    const Eigen::Vector3d momentum = model_->masses()[i] * v[i];
-    rhs_[i] = (momentum + dt * (external_[i] - stiff_[i])).cwiseProduct(free_[i]);
-    scale += (momentum.cwiseAbs() + dt * (external_[i].cwiseAbs() + stiff_[i].cwiseAbs()))
+    const Eigen::Vector3d damping = material.mass_damping * model_->masses()[i] * v[i];
+    residual_[i] = (dt * (external_[i] - damping - stiff_[i])).cwiseProduct(free_[i]);
+    scale += (dt * (external_[i].cwiseAbs() + damping.cwiseAbs() + stiff_[i].cwiseAbs()) +
+              model_->masses()[i] * v[i].cwiseAbs())
                  .cwiseProduct(free_[i])
                  .squaredNorm();
-    v[i] = v[i].cwiseProduct(free_[i]);
   }
-  MultiplySystem(a, b, v, &product_);
-  for (const std::uint32_t i : active) residual_[i] = rhs_[i] - product_[i];
   Precondition(residual_, &preconditioned_);
   for (const std::uint32_t i : active) direction_[i] = preconditioned_[i];
   double rz = Dot(active, residual_, preconditioned_);

@@ -19,9 +19,9 @@
 namespace kerf::fem {
 
 struct ImplicitSolveOptions {
-  // The solve stops when |residual| <= tolerance |terms of the right-hand side| (Euclidean,
-  // over the free components; the terms |M v| + dt (|f_external| + |K u|) taken apart, since
-  // near equilibrium they cancel) ...
+  // The solve stops when |residual| <= tolerance |terms| (Euclidean, over the free
+  // components; the terms of the momentum balance |M v| + dt (|f_external| + |alpha M v| +
+  // |K (u + (beta + dt) v)|) taken apart, since near equilibrium they cancel) ...
   double tolerance = 1e-6;
   // ... or after this many iterations (each one multiply by K).
   int max_iterations = 1000;
@@ -30,7 +30,7 @@ struct ImplicitSolveOptions {
 // How the last step's linear solve went.
 struct ImplicitSolveReport {
   int iterations = 0;
-  double relative_residual = 0;  // |residual| / |terms of the right-hand side|
+  double relative_residual = 0;  // |residual| / |terms|
 };
 
 // Reusable buffers so that a step allocates nothing once the mesh stops growing.
@@ -61,7 +61,7 @@ class ImplicitIntegrator : public TimeIntegrator {
   std::vector<Eigen::Vector3d> free_;  // per component: 1 if it moves, 0 if held or massless
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
   double prepared_dt_ = 0;  // the dt inverse_diagonal_ is for; 0 after a refresh
-  std::vector<Eigen::Vector3d> rhs_, residual_, direction_, preconditioned_, product_, stiff_;
+  std::vector<Eigen::Vector3d> residual_, direction_, preconditioned_, product_, stiff_;
   ImplicitSolveReport last_solve_;
 };
 

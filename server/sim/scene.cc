@@ -120,12 +120,20 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
   if (absl::Status s = fem::ValidateMaterial(scene.material); !s.ok()) {
     return absl::InvalidArgumentError(absl::StrCat("material.", s.message()));
   }
-  if (scene.method == kerf::v1::Integration::METHOD_UNSPECIFIED) {
-    scene.method = kerf::v1::Integration::SYMPLECTIC_EULER;
+  if (!kerf::v1::Integration::Method_IsValid(scene.method)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("integration.method must be SYMPLECTIC_EULER, IMPLICIT_EULER or STATIC, got ",
+                     scene.method));
   }
   if (!kerf::v1::Cutting::Mode_IsValid(scene.cut_mode)) {
     return absl::InvalidArgumentError(
         absl::StrCat("cutting.mode must be DEFERRED or PROGRESSIVE, got ", scene.cut_mode));
+  }
+  if (scene.method == kerf::v1::Integration::METHOD_UNSPECIFIED) {
+    // Explicit integration blows up under a live progressive cut (kerf experiment live-cut).
+    scene.method = scene.cut_mode == kerf::v1::Cutting::PROGRESSIVE
+                       ? kerf::v1::Integration::IMPLICIT_EULER
+                       : kerf::v1::Integration::SYMPLECTIC_EULER;
   }
   if (!std::isfinite(scene.time_step) || scene.time_step < 0) {
     return absl::InvalidArgumentError(absl::StrCat(

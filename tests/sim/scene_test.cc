@@ -65,6 +65,9 @@ TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
        "-1"},
       {Tension() + "cutting { mode: 7 }\n",
        "scene 'lattice-tension': cutting.mode must be DEFERRED or PROGRESSIVE, got 7"},
+      {Tension() + "integration { method: 9 }\n",
+       "scene 'lattice-tension': integration.method must be SYMPLECTIC_EULER, IMPLICIT_EULER or "
+       "STATIC, got 9"},
       {Tension() + "loads { vertices { ids { ids: 9999 } } total_force { x: 1 } }\n",
        "scene 'lattice-tension': loads[0].vertices.ids: no vertex 9999"},
       {absl::StrReplaceAll(Tension(),
@@ -78,6 +81,30 @@ TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
     ASSERT_TRUE(spec.ok()) << spec.status();
     EXPECT_EQ(StatusMessage(BuildScene(*spec, ".")), message);
   }
+}
+
+TEST(BuildScene, AProgressiveSceneIntegratesImplicitlyUnlessItSaysOtherwise) {
+  const auto method_of = [](const std::string& extra) {
+    return BuildScene(*ParseSceneText(Tension() + extra, "s.textproto"), ".")->method;
+  };
+  EXPECT_EQ(method_of(""), kerf::v1::Integration::SYMPLECTIC_EULER);
+  EXPECT_EQ(method_of("cutting { mode: PROGRESSIVE }\n"), kerf::v1::Integration::IMPLICIT_EULER);
+  EXPECT_EQ(method_of("cutting { mode: PROGRESSIVE }\nintegration { method: SYMPLECTIC_EULER }\n"),
+            kerf::v1::Integration::SYMPLECTIC_EULER);
+  EXPECT_EQ(method_of("integration { method: IMPLICIT_EULER }\n"),
+            kerf::v1::Integration::IMPLICIT_EULER);
+}
+
+// Backward Euler at its automatic step (1 ms) settles where the static solve puts the bar.
+TEST(Simulation, ImplicitCantileverSettlesToTheSameDeflection) {
+  Scene scene = *LoadScene("bar-cantilever");
+  scene.method = kerf::v1::Integration::IMPLICIT_EULER;
+  absl::StatusOr<std::unique_ptr<Simulation>> s = Simulation::Create(std::move(scene));
+  ASSERT_TRUE(s.ok()) << s.status();
+  EXPECT_EQ((*s)->time_step(), Simulation::kImplicitTimeStep);
+  for (int step = 0; step < 5000; ++step) (*s)->Step();
+  const mesh::VertexId tip_centre = kerf::testing::VertexAt((*s)->mesh(), {5, 0.5, 0.5});
+  EXPECT_NEAR(-(*s)->state().displacement[mesh::Index(tip_centre)].z(), 0.06057, 1e-4 * 0.06057);
 }
 
 TEST(Simulation, StaticCantileverReproducesTheReferenceDeflection) {

@@ -17,9 +17,11 @@ function check(ok, what) {
 }
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
-// Starts a process; `lines(pattern)` resolves with the first line of its output matching it.
+// Starts a process; `lines(pattern)` resolves with the first line of its output matching it,
+// `exited` when it exits (however early).
 function start(command, args) {
   const child = spawn(command, args, { stdio: ['ignore', 'pipe', 'inherit'] });
+  const exited = new Promise((resolve) => child.on('exit', resolve));
   const seen = [], waiting = [];
   createInterface({ input: child.stdout }).on('line', (line) => {
     seen.push(line);
@@ -30,7 +32,7 @@ function start(command, args) {
     waiting.push({ pattern, resolve });
     child.on('exit', (code) => reject(new Error(`${command} exited (${code}) before ${pattern}`)));
   });
-  return { child, line };
+  return { child, line, exited };
 }
 
 async function waitFor(page, predicate, what, ms = 20000) {
@@ -79,7 +81,7 @@ try {
   }
   mkdirSync('test/screenshots', { recursive: true });
   const uncut = await first.screenshot({ path: 'test/screenshots/before-cut.png' });
-  await new Promise((resolve) => cutter.child.on('exit', resolve));  // the cut is done
+  await cutter.exited;  // the cut is done
   await waitFor(first, () => window.kerf.onCut > 0, 'the cut appears on the page');
   await sleep(500);
   const after = await sessionInfo(base, session);
@@ -103,7 +105,7 @@ try {
   await first.uncheck('#heat');
   // The server restarts (its sessions come back from the journal): both tabs reconnect.
   kerfServer.child.kill('SIGTERM');
-  await new Promise((resolve) => kerfServer.child.on('exit', resolve));
+  await kerfServer.exited;
   kerfServer = start(server, [`--listen=${grpc}`, `--http_listen=${web}`,
                               `--journal_dir=${journal}`, '--web_root=dist']);
   await kerfServer.line(/^kerf-server listening on /);
