@@ -6,6 +6,8 @@
 
 #include "fem/boundary_conditions.h"
 #include "fem/material.h"
+#include "fem/static_solver.h"
+#include "fem/time_integrator.h"
 #include "mesh/box_lattice.h"
 
 namespace kerf::fem {
@@ -39,6 +41,16 @@ inline Material Accuracy(double mass_damping) {
   m.density = 1;
   m.mass_damping = mass_damping;
   return m;
+}
+
+// The bar at rest in its static deflection under `bc`, whose gravity is then taken away: it
+// vibrates, undamped if the model's material is.
+inline DynamicState ReleasedFromItsDeflection(const TensorMassModel& model,
+                                              BoundaryConditions* bc) {
+  DynamicState state = DynamicState::AtRest(model, *bc);
+  state.displacement = *SolveStaticEquilibrium(model, *bc);
+  bc->gravity.setZero();
+  return state;
 }
 
 inline double MaxNorm(const std::vector<Eigen::Vector3d>& u) {
