@@ -62,12 +62,14 @@ try {
   const [, web] = await kerfServer.line(/^kerf-server web on (\S+)$/);
   const base = `http://${web}`;
   const [, grpc] = await kerfServer.line(/^kerf-server listening on (\S+)$/);
-  // A session whose tissue settles for 1 s (it still moves under its load while it is cut),
-  // then a 4 s cut along the straight path.
+  // A session whose tissue settles for 3 s (time for the pages to load; it still moves under
+  // its load while it is cut), then a 4 s cut along the straight path. Its surface is counted
+  // at once, before the cut, however slowly the pages load.
   const cutter = start(haptic, [`--server=${grpc}`, '--path=../server/cut/paths/lattice-straight.json',
-                                '--device=path', '--slowdown=16', '--settle_seconds=1',
+                                '--device=path', '--slowdown=16', '--settle_seconds=3',
                                 '--keep_session']);
   const [, session, token] = await cutter.line(/^kerf-haptic: session (\S+), observer token (\S+)$/);
+  const uncutInfo = await sessionInfo(base, session);
   const pages = [await browser.newPage({ viewport: { width: 960, height: 640 } }),
                  await browser.newPage({ viewport: { width: 960, height: 640 } })];
   for (const page of pages) await page.goto(`${base}/#session=${session}&token=${token}`);
@@ -86,7 +88,7 @@ try {
   await sleep(500);
   const after = await sessionInfo(base, session);
   const drawnAfter = await first.evaluate(() => window.kerf.triangles);
-  check(drawnAfter === Number(after.surface_triangles) && drawnAfter > Number(before.surface_triangles),
+  check(drawnAfter === Number(after.surface_triangles) && drawnAfter > Number(uncutInfo.surface_triangles),
         `after the cut the page draws the server's surface (${drawnAfter} triangles; the server has ${after.surface_triangles})`);
   const cut = await first.screenshot({ path: 'test/screenshots/after-cut.png' });
   check(!uncut.equals(cut), 'the picture changed with the cut');
