@@ -36,6 +36,7 @@ void ImplicitIntegrator::Refresh(const BoundaryConditions& bc) {
   for (auto* buffer : {&residual_, &direction_, &preconditioned_, &product_, &stiff_}) {
     buffer->resize(n);
   }
+  change_.resize(n, Eigen::Vector3d::Zero());
   inverse_diagonal_.resize(n);
   prepared_dt_ = 0;
 }
@@ -80,22 +81,24 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
   std::vector<Eigen::Vector3d>& v = state->velocity;
   const std::span<const std::uint32_t> active = model_->active_vertices();
 
-  // The solve starts from S v: its residual, for the change of velocity, is
-  //   S (M v + dt (f - K u) - A v) = S dt (f - alpha M v - K (u + (beta + dt) v)),
+  // The solve starts from g = S (v + change): its residual, for the new velocity, is
+  //   S (M v + dt (f - K u) - A g) = S (M (v - a g) + dt f - K (dt u + b g)),
   // one multiply by K. Near equilibrium f and K u cancel, so the tolerance is relative to the
   // size of the terms, not to their sum.
-  const double lead = material.stiffness_damping + dt;
   for (const std::uint32_t i : active) {
-    v[i] = v[i].cwiseProduct(free_[i]);
-    product_[i] = state->displacement[i] + lead * v[i];
+    const Eigen::Vector3d old = v[i].cwiseProduct(free_[i]);
+    v[i] = (old + change_[i]).cwiseProduct(free_[i]);
+    change_[i] = old;  // until the solve is done
+    residual_[i] = model_->masses()[i] * (old - a * v[i]);
+    product_[i] = dt * state->displacement[i] + b * v[i];
   }
   model_->MultiplyStiffness(product_, stiff_);
   double scale = 0;
   for (const std::uint32_t i : active) {
-    const Eigen::Vector3d damping = material.mass_damping * model_->masses()[i] * v[i];
-    residual_[i] = (dt * (external_[i] - damping - stiff_[i])).cwiseProduct(free_[i]);
-    scale += (dt * (external_[i].cwiseAbs() + damping.cwiseAbs() + stiff_[i].cwiseAbs()) +
-              model_->masses()[i] * v[i].cwiseAbs())
+    residual_[i] = (residual_[i] + dt * external_[i] - stiff_[i]).cwiseProduct(free_[i]);
+    const double mass = model_->masses()[i];
+    scale += (mass * change_[i].cwiseAbs() + dt * external_[i].cwiseAbs() +
+              a * mass * v[i].cwiseAbs() + stiff_[i].cwiseAbs())
                  .cwiseProduct(free_[i])
                  .squaredNorm();
   }
@@ -126,7 +129,10 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
   }
   last_solve_ = {iteration, scale > 0 ? residual_norm / std::sqrt(scale) : 0};
 
-  for (const std::uint32_t i : active) state->displacement[i] += dt * v[i];
+  for (const std::uint32_t i : active) {
+    state->displacement[i] += dt * v[i];
+    change_[i] = v[i] - change_[i];
+  }
   for (const PrescribedDisplacement& p : prescribed_) {
     state->displacement[mesh::Index(p.vertex)][p.component] = p.value;
   }

@@ -9,7 +9,8 @@
 //
 // The system is solved by conjugate gradients on the model's own tensors, which the model
 // updates incrementally after cuts (never assembled, never factorised), preconditioned by the
-// inverse of each vertex's 3x3 diagonal block and started from the current velocity.
+// inverse of each vertex's 3x3 diagonal block and started from the velocity the last step's
+// change predicts (v + (v - v_previous)).
 #pragma once
 
 #include <vector>
@@ -20,8 +21,9 @@ namespace kerf::fem {
 
 struct ImplicitSolveOptions {
   // The solve stops when |residual| <= tolerance |terms| (Euclidean, over the free
-  // components; the terms of the momentum balance |M v| + dt (|f_external| + |alpha M v| +
-  // |K (u + (beta + dt) v)|) taken apart, since near equilibrium they cancel) ...
+  // components; the terms of the momentum balance M v + dt f_external = a M g + K (dt u + b g)
+  // at the solve's start g, a = 1 + dt alpha, b = dt beta + dt^2, taken apart, since near
+  // equilibrium they cancel) ...
   double tolerance = 1e-6;
   // ... or after this many iterations (each one multiply by K).
   int max_iterations = 1000;
@@ -62,6 +64,9 @@ class ImplicitIntegrator : public TimeIntegrator {
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
   double prepared_dt_ = 0;  // the dt inverse_diagonal_ is for; 0 after a refresh
   std::vector<Eigen::Vector3d> residual_, direction_, preconditioned_, product_, stiff_;
+  // v' - v of the last step (zero for vertices it did not move): the next solve starts from
+  // v + change_.
+  std::vector<Eigen::Vector3d> change_;
   ImplicitSolveReport last_solve_;
 };
 

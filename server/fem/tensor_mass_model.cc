@@ -172,8 +172,10 @@ void TensorMassModel::MultiplyStiffness(std::span<const Eigen::Vector3d> u,
   assert(u.size() >= vertex_tensors_.size() && f.size() >= vertex_tensors_.size());
   for (const std::uint32_t i : active_) f[i] = vertex_tensors_[i] * u[i];
   for (const EdgeTensor& e : edges_) {
-    f[Index(e.a)] += e.k_ab * u[Index(e.b)];
-    f[Index(e.b)] += e.k_ab.transpose() * u[Index(e.a)];
+    const std::uint32_t a = Index(e.a), b = Index(e.b);
+    const Eigen::Vector3d u_a = u[a], u_b = u[b];
+    f[a] += e.k_ab * u_b;
+    f[b] += e.k_ab.transpose() * u_a;
   }
 }
 
