@@ -81,6 +81,10 @@ absl::StatusOr<CreatedSession> SessionRegistry::Create(
   if (!spec.ok()) return spec.status();
   absl::StatusOr<sim::Scene> scene = sim::BuildScene(*spec, ".");
   if (!scene.ok()) return scene.status();
+  // The journal records what the session runs with, not what defaulted to it, so that a
+  // replay means the same whatever the defaults become.
+  spec->mutable_cutting()->set_mode(scene->cut_mode);
+  spec->mutable_integration()->set_method(scene->method);
   SessionOptions session_options = options_.session;
   if (request.physics_rate_hz() != 0) session_options.physics_rate_hz = request.physics_rate_hz();
   if (request.frame_rate_hz() != 0) session_options.frame_rate_hz = request.frame_rate_hz();

@@ -49,7 +49,7 @@ void BM_PoseInsideACut(benchmark::State& state) {
     Eigen::Vector3d high = Eigen::Vector3d::Zero();
     for (const mesh::VertexId v : m->vertices()) high = high.cwiseMax(m->rest_position(v));
     size = high.x();
-    cutter = std::make_unique<Cutter>(*Cutter::Create(m.get(), 0.01, limits));
+    cutter = std::make_unique<Cutter>(*Cutter::Create(m.get(), 0.01, limits, CutMode::kDeferred));
     pose = 0;
     if (state.range(1) == 1) EvictCaches();
   };
@@ -90,7 +90,7 @@ void BM_FinalSubdivision(benchmark::State& state) {
     limits.max_length = 3 * size;
     limits.max_step = 3 * size;
     limits.max_speed = 1e9;
-    cutter = std::make_unique<Cutter>(*Cutter::Create(m.get(), 0.01, limits));
+    cutter = std::make_unique<Cutter>(*Cutter::Create(m.get(), 0.01, limits, CutMode::kDeferred));
     const double x = 0.5 * size + 0.0037;
     const auto blade_at = [&](int k, double y) {
       const Eigen::Vector3d tip(x, y, -0.005);

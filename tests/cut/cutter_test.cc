@@ -66,7 +66,7 @@ TEST(Cutter, AThroughCutSeparatesTheBarOnTheBladePlane) {
   TetMesh m = Bar();
   const std::uint32_t original_vertices = m.vertex_index_bound();
   const double volume = RestVolume(m);
-  Cutter cutter = *Cutter::Create(&m, 0.01);
+  Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred);
   double time = 0;
   // The blade spans the bar's depth (z) and crosses it along y at x = 33.7 mm.
   Sweep(cutter, m, {0.0337, -0.005, -0.005}, {0.0337, -0.005, 0.025}, {0, 0.03, 0}, &time);
@@ -92,7 +92,7 @@ TEST(Cutter, AThroughCutSeparatesTheBarOnTheBladePlane) {
 TEST(Cutter, ASecondCutAcrossTheFirstCutsItsNewTets) {
   TetMesh m = Bar();
   const double volume = RestVolume(m);
-  Cutter cutter = *Cutter::Create(&m, 0.01);
+  Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred);
   double time = 0;
   Sweep(cutter, m, {0.0337, -0.005, -0.005}, {0.0337, -0.005, 0.025}, {0, 0.03, 0}, &time);
   cutter.Finish();
@@ -110,7 +110,7 @@ TEST(Cutter, ABladeWhoseTipStaysInsideLeavesACrack) {
   TetMesh m = Bar();
   const double volume = RestVolume(m);
   const double area = BoundaryArea(m);
-  Cutter cutter = *Cutter::Create(&m, 0.01);
+  Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred);
   double time = 0;
   // The tip runs 9.3 mm deep (the bar is 20 mm deep); the heel stays above the bar.
   Sweep(cutter, m, {0.0337, -0.005, 0.0107}, {0.0337, -0.005, 0.03}, {0, 0.03, 0}, &time);
@@ -157,7 +157,7 @@ TEST(Cutter, DegenerateBladesLeaveAValidMesh) {
     SCOPED_TRACE(blade.what);
     TetMesh m = Bar();
     const double volume = RestVolume(m);
-    Cutter cutter = *Cutter::Create(&m, 0.01);
+    Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred);
     double time = 0;
     Sweep(cutter, m, blade.tip, blade.heel, blade.travel, &time);
     // Hesitate (the same pose again), then go back half way and forward again.
@@ -175,7 +175,7 @@ TEST(Cutter, DegenerateBladesLeaveAValidMesh) {
 
 TEST(Cutter, ABadPoseIsRefusedAndChangesNothing) {
   TetMesh m = Bar();
-  Cutter cutter = *Cutter::Create(&m, 0.01);
+  Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred);
   ASSERT_TRUE(cutter.ApplyPose({0, {0.0337, -0.005, -0.005}, {0.0337, -0.005, 0.025}}).ok());
   const mesh::ChangeMark mark = m.change_log().Mark();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -196,7 +196,7 @@ TEST(Cutter, CutsTheDeformedShapeAndPlacesRestPositionsByTheSameCoordinates) {
     m.set_current_position(v, p);
   }
   const std::uint32_t original_vertices = m.vertex_index_bound();
-  Cutter cutter = *Cutter::Create(&m, 0.01);
+  Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred);
   ASSERT_TRUE(cutter.MeshDeformed().ok());
   double time = 0;
   Sweep(cutter, m, {0.0337 * 1.1, -0.005, -0.005}, {0.0337 * 1.1, -0.005, 0.025}, {0, 0.03, 0},

@@ -34,7 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   const double volume = Volume(m);
   kerf::cut::BladeLimits limits;
   limits.max_speed = 1e9;
-  kerf::cut::Cutter cutter = *kerf::cut::Cutter::Create(&m, 0.01, limits);
+  kerf::cut::Cutter cutter =
+      *kerf::cut::Cutter::Create(&m, 0.01, limits, kerf::cut::CutMode::kDeferred);
   Eigen::Vector3d tip(0.015, -0.003, 0.005), heel(0.015, -0.003, 0.03);
   double time = 0;
   for (std::size_t i = 0; i + 7 <= size; i += 7) {

@@ -66,6 +66,25 @@ TEST_F(SessionRegistryJournalTest, ASessionLeftOpenIsRestoredWithItsTokens) {
   EXPECT_EQ((*session)->Info().tets(), 576u);
 }
 
+// A journal names the cut mode and method its session ran with, even where the scene left them
+// to the defaults, so that it replays alike if the defaults change.
+TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsChose) {
+  std::string id;
+  {
+    SessionRegistry registry(Options());
+    absl::StatusOr<CreatedSession> created = registry.Create({});  // the default scene
+    ASSERT_TRUE(created.ok()) << created.status();
+    id = created->session->id();
+    registry.CloseAll(absl::UnavailableError("shutting down"));
+  }
+  const absl::StatusOr<JournalContents> journal = ReadJournal(JournalOf(id));
+  ASSERT_TRUE(journal.ok()) << journal.status();
+  ASSERT_GE(journal->records.size(), 1u);
+  const kerf::v1::Scene& scene = journal->records[0].start().scene();
+  EXPECT_EQ(scene.cutting().mode(), kerf::v1::Cutting::PROGRESSIVE);
+  EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::IMPLICIT_EULER);
+}
+
 TEST_F(SessionRegistryJournalTest, ASessionClosedByItsClientIsKeptButNotRestored) {
   std::string id;
   {
