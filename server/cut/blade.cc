@@ -39,6 +39,11 @@ absl::Status ValidatePose(const BladePose& pose, const BladePose* previous,
   return absl::OkStatus();
 }
 
+BladePose InterpolatePose(const BladePose& a, const BladePose& b, double time) {
+  const double s = (time - a.time) / (b.time - a.time);
+  return {time, a.tip + s * (b.tip - a.tip), a.heel + s * (b.heel - a.heel)};
+}
+
 absl::StatusOr<BladePose> FromProto(const kerf::v1::BladePose& pose) {
   if (pose.tip_size() != 3 || pose.heel_size() != 3) {
     return absl::InvalidArgumentError(absl::StrCat("tip and heel must be [x, y, z]; got ",

@@ -32,6 +32,10 @@ struct BladeLimits {
 absl::Status ValidatePose(const BladePose& pose, const BladePose* previous,
                           const BladeLimits& limits);
 
+// The pose at `time` on the straight motion from a to b (a.time < b.time): tip and heel
+// linear in time.
+BladePose InterpolatePose(const BladePose& a, const BladePose& b, double time);
+
 // From the message; INVALID_ARGUMENT if tip or heel is not three numbers.
 absl::StatusOr<BladePose> FromProto(const kerf::v1::BladePose& pose);
 // The message of a pose (FromProto's inverse, exactly).

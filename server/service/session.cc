@@ -19,11 +19,6 @@ constexpr int kMaxStepsPerTick = 200;
 
 constexpr std::size_t kMaxWaitingSnapshots = 64;
 
-cut::BladePose Interpolate(const cut::BladePose& a, const cut::BladePose& b, double time) {
-  const double s = (time - a.time) / (b.time - a.time);
-  return {time, a.tip + s * (b.tip - a.tip), a.heel + s * (b.heel - a.heel)};
-}
-
 bool ChangesTopology(const kerf::v1::Frame& f) {
   return f.removed_vertices_size() + f.added_vertices_size() + f.removed_elements_size() +
              f.added_elements_size() >
@@ -375,7 +370,7 @@ void Session::ApplyDuePoses(std::uint64_t tick, double until) {
     poses_.pop_front();
   }
   if (!poses_.empty() && last_applied_ && last_applied_->time < until) {
-    apply(Interpolate(*last_applied_, poses_.front(), until), blade_time_);  // slow poses
+    apply(cut::InterpolatePose(*last_applied_, poses_.front(), until), blade_time_);  // slow poses
   }
   if (poses_.empty() && withdraw_when_done_) {
     Withdraw();

@@ -16,13 +16,8 @@ namespace {
 cut::BladePose PoseAt(const std::vector<cut::BladePose>& path, double t) {
   std::size_t k = 0;
   while (k + 1 < path.size() && path[k + 1].time < t) ++k;
-  cut::BladePose pose = path[k];
-  if (k + 1 < path.size() && t > path[k].time) {
-    const double a = (t - path[k].time) / (path[k + 1].time - path[k].time);
-    pose.tip = (1 - a) * path[k].tip + a * path[k + 1].tip;
-    pose.heel = (1 - a) * path[k].heel + a * path[k + 1].heel;
-  }
-  return pose;
+  if (k + 1 < path.size() && t > path[k].time) return cut::InterpolatePose(path[k], path[k + 1], t);
+  return path[k];
 }
 
 double SmallestHeight(const mesh::TetMesh& mesh) {

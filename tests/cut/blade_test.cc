@@ -41,6 +41,18 @@ TEST(ParseBladePathJson, RefusesBadPathsNamingThePose) {
             "p.json: pose 1: time 0 s does not follow the previous pose's 0 s");
 }
 
+TEST(InterpolatePose, MovesTipAndHeelLinearlyInTime) {
+  const BladePose a{1.0, {0, 0, 0}, {0, 0, 0.02}};
+  const BladePose b{1.5, {0.01, 0.002, 0}, {0.01, 0, 0.03}};
+  const BladePose at_a = InterpolatePose(a, b, 1.0);
+  EXPECT_EQ(at_a.tip, a.tip);
+  EXPECT_EQ(at_a.heel, a.heel);
+  const BladePose middle = InterpolatePose(a, b, 1.25);
+  EXPECT_EQ(middle.time, 1.25);
+  EXPECT_TRUE(middle.tip.isApprox(Eigen::Vector3d(0.005, 0.001, 0), 1e-15));
+  EXPECT_TRUE(middle.heel.isApprox(Eigen::Vector3d(0.005, 0, 0.025), 1e-15));
+}
+
 TEST(ValidatePose, RefusesNonFiniteShortLongJumpingAndFastPoses) {
   const BladeLimits limits;  // 0.1 m long, 0.02 m per pose, 2 m/s
   const BladePose first{0, {0, 0, 0}, {0, 0, 0.02}};
