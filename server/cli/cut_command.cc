@@ -26,7 +26,7 @@ namespace kerf::cli {
 namespace {
 
 constexpr absl::string_view kUsage =
-    "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--trace OUT.jsonl] "
+    "kerf cut MESH --path PATH.json --out OUT.vtu [--deferred|--progressive] [--trace OUT.jsonl] "
     "[--dump-every-pose DIR] [--json]";
 
 // The mesh of a scene (an embedded name or a .textproto file) in its initial state, or of a
@@ -223,11 +223,13 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   const bool json = rest.TakeFlag("--json");
   CutOptions options;
   const bool deferred = rest.TakeFlag("--deferred");
-  if (rest.TakeFlag("--progressive") && deferred) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
+  if (rest.TakeFlag("--progressive")) {
+    if (deferred) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
+    }
+    options.mode = cut::CutMode::kProgressive;
   }
-  if (deferred) options.mode = cut::CutMode::kDeferred;
   for (auto [flag, into] :
        {std::pair<absl::string_view, std::string*>{"--trace", &options.trace_path},
         {"--dump-every-pose", &options.dump_directory}}) {

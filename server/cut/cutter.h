@@ -105,7 +105,7 @@ class Cutter {
   // (m) sets the grid; a mean edge length is a good choice. INVALID_ARGUMENT for a bad size.
   static absl::StatusOr<Cutter> Create(mesh::TetMesh* mesh, double cell_size,
                                        const BladeLimits& limits = {},
-                                       CutMode mode = CutMode::kProgressive);
+                                       CutMode mode = CutMode::kDeferred);
 
   // Applies one pose. INVALID_ARGUMENT (and nothing changed) for a bad pose. The first pose
   // only places the blade. Cost: the tets near the swept surface and the groups split.

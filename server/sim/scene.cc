@@ -127,10 +127,10 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
   }
   if (!kerf::v1::Cutting::Mode_IsValid(scene.cut_mode)) {
     return absl::InvalidArgumentError(
-        absl::StrCat("cutting.mode must be PROGRESSIVE or DEFERRED, got ", scene.cut_mode));
+        absl::StrCat("cutting.mode must be DEFERRED or PROGRESSIVE, got ", scene.cut_mode));
   }
   if (scene.cut_mode == kerf::v1::Cutting::MODE_UNSPECIFIED) {
-    scene.cut_mode = kerf::v1::Cutting::PROGRESSIVE;
+    scene.cut_mode = kerf::v1::Cutting::DEFERRED;
   }
   if (scene.method == kerf::v1::Integration::METHOD_UNSPECIFIED) {
     // Explicit integration blows up under a live progressive cut (kerf experiment live-cut).

@@ -81,8 +81,8 @@ TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsCho
   ASSERT_TRUE(journal.ok()) << journal.status();
   ASSERT_GE(journal->records.size(), 1u);
   const kerf::v1::Scene& scene = journal->records[0].start().scene();
-  EXPECT_EQ(scene.cutting().mode(), kerf::v1::Cutting::PROGRESSIVE);
-  EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::IMPLICIT_EULER);
+  EXPECT_EQ(scene.cutting().mode(), kerf::v1::Cutting::DEFERRED);
+  EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::SYMPLECTIC_EULER);
 }
 
 TEST_F(SessionRegistryJournalTest, ASessionClosedByItsClientIsKeptButNotRestored) {

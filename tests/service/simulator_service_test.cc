@@ -397,7 +397,8 @@ TEST(SimulatorService, ListsScenesAndSessionsAndMakesSessionsByName) {
     names.insert(scene.name());
     EXPECT_FALSE(scene.description().empty()) << scene.name();
   }
-  EXPECT_EQ(names, (std::set<std::string>{"bar-cantilever", "lattice-tension"}));
+  EXPECT_EQ(names, (std::set<std::string>{"bar-cantilever", "lattice-tension",
+                                          "lattice-tension-progressive"}));
   kerf::v1::CreateSessionRequest request;
   request.set_scene_name("bar-cantilever");
   kerf::v1::CreateSessionResponse created;

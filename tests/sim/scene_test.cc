@@ -13,7 +13,9 @@ namespace {
 using kerf::testing::StatusMessage;
 
 TEST(LoadScene, EmbeddedScenesBuild) {
-  EXPECT_EQ(EmbeddedSceneNames(), (std::vector<std::string>{"lattice-tension", "bar-cantilever"}));
+  EXPECT_EQ(EmbeddedSceneNames(),
+            (std::vector<std::string>{"lattice-tension", "lattice-tension-progressive",
+                                      "bar-cantilever"}));
   absl::StatusOr<Scene> tension = LoadScene("lattice-tension");
   ASSERT_TRUE(tension.ok()) << tension.status();
   EXPECT_EQ(tension->mesh.tet_count(), 576u);
@@ -22,6 +24,12 @@ TEST(LoadScene, EmbeddedScenesBuild) {
   double pulled = 0;
   for (const auto& p : tension->conditions.prescribed) pulled = std::max(pulled, p.value);
   EXPECT_DOUBLE_EQ(pulled, 0.006);
+  absl::StatusOr<Scene> progressive = LoadScene("lattice-tension-progressive");
+  ASSERT_TRUE(progressive.ok()) << progressive.status();
+  EXPECT_EQ(progressive->mesh.tet_count(), 576u);
+  EXPECT_EQ(progressive->conditions.prescribed.size(), tension->conditions.prescribed.size());
+  EXPECT_EQ(progressive->cut_mode, kerf::v1::Cutting::PROGRESSIVE);
+  EXPECT_EQ(progressive->method, kerf::v1::Integration::IMPLICIT_EULER);
   absl::StatusOr<Scene> cantilever = LoadScene("bar-cantilever");
   ASSERT_TRUE(cantilever.ok()) << cantilever.status();
   EXPECT_EQ(cantilever->conditions.gravity, Eigen::Vector3d(0, 0, -1));
@@ -29,7 +37,8 @@ TEST(LoadScene, EmbeddedScenesBuild) {
 
 TEST(LoadScene, UnknownNamesAndFilesAreClearErrors) {
   EXPECT_EQ(StatusMessage(LoadScene("liver-cut")),
-            "no embedded scene 'liver-cut' (there are: lattice-tension, bar-cantilever)");
+            "no embedded scene 'liver-cut' (there are: lattice-tension, "
+            "lattice-tension-progressive, bar-cantilever)");
 }
 
 std::string Tension() { return *EmbeddedSceneText("lattice-tension"); }
@@ -64,7 +73,7 @@ TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
        "scene 'lattice-tension': integration.time_step must be positive (s), or 0 to choose, got "
        "-1"},
       {Tension() + "cutting { mode: 7 }\n",
-       "scene 'lattice-tension': cutting.mode must be PROGRESSIVE or DEFERRED, got 7"},
+       "scene 'lattice-tension': cutting.mode must be DEFERRED or PROGRESSIVE, got 7"},
       {Tension() + "integration { method: 9 }\n",
        "scene 'lattice-tension': integration.method must be SYMPLECTIC_EULER, IMPLICIT_EULER or "
        "STATIC, got 9"},
@@ -83,27 +92,26 @@ TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
   }
 }
 
-TEST(BuildScene, ASceneCutsProgressivelyAndIntegratesImplicitlyUnlessItSaysOtherwise) {
-  const auto built = [](const std::string& extra) {
-    return *BuildScene(*ParseSceneText(Tension() + extra, "s.textproto"), ".");
+TEST(BuildScene, AProgressiveSceneIntegratesImplicitlyUnlessItSaysOtherwise) {
+  const auto method_of = [](const std::string& extra) {
+    return BuildScene(*ParseSceneText(Tension() + extra, "s.textproto"), ".")->method;
   };
-  EXPECT_EQ(built("").cut_mode, kerf::v1::Cutting::PROGRESSIVE);
-  EXPECT_EQ(built("").method, kerf::v1::Integration::IMPLICIT_EULER);
-  EXPECT_EQ(built("cutting { mode: DEFERRED }\n").cut_mode, kerf::v1::Cutting::DEFERRED);
-  // Explicit integration is stable under deferred cuts only (kerf experiment live-cut).
-  EXPECT_EQ(built("cutting { mode: DEFERRED }\n").method, kerf::v1::Integration::SYMPLECTIC_EULER);
-  EXPECT_EQ(built("cutting { mode: DEFERRED }\nintegration { method: IMPLICIT_EULER }\n").method,
-            kerf::v1::Integration::IMPLICIT_EULER);
-  EXPECT_EQ(built("integration { method: SYMPLECTIC_EULER }\n").method,
+  EXPECT_EQ(method_of(""), kerf::v1::Integration::SYMPLECTIC_EULER);
+  EXPECT_EQ(BuildScene(*ParseSceneText(Tension(), "s.textproto"), ".")->cut_mode,
+            kerf::v1::Cutting::DEFERRED);  // a scene that names no mode
+  EXPECT_EQ(method_of("cutting { mode: PROGRESSIVE }\n"), kerf::v1::Integration::IMPLICIT_EULER);
+  EXPECT_EQ(method_of("cutting { mode: PROGRESSIVE }\nintegration { method: SYMPLECTIC_EULER }\n"),
             kerf::v1::Integration::SYMPLECTIC_EULER);
+  EXPECT_EQ(method_of("integration { method: IMPLICIT_EULER }\n"),
+            kerf::v1::Integration::IMPLICIT_EULER);
 }
 
-// Backward Euler (the default) at its automatic step (1 ms) settles where the static solve
-// puts the bar.
+// Backward Euler at its automatic step (1 ms) settles where the static solve puts the bar.
 TEST(Simulation, ImplicitCantileverSettlesToTheSameDeflection) {
-  absl::StatusOr<std::unique_ptr<Simulation>> s = Simulation::Create(*LoadScene("bar-cantilever"));
+  Scene scene = *LoadScene("bar-cantilever");
+  scene.method = kerf::v1::Integration::IMPLICIT_EULER;
+  absl::StatusOr<std::unique_ptr<Simulation>> s = Simulation::Create(std::move(scene));
   ASSERT_TRUE(s.ok()) << s.status();
-  EXPECT_EQ((*s)->scene().method, kerf::v1::Integration::IMPLICIT_EULER);
   EXPECT_EQ((*s)->time_step(), Simulation::kImplicitTimeStep);
   for (int step = 0; step < 5000; ++step) (*s)->Step();
   const mesh::VertexId tip_centre = kerf::testing::VertexAt((*s)->mesh(), {5, 0.5, 0.5});
@@ -124,9 +132,7 @@ TEST(Simulation, StaticCantileverReproducesTheReferenceDeflection) {
 }
 
 TEST(Simulation, ExplicitCantileverSettlesToTheSameDeflection) {
-  Scene scene = *LoadScene("bar-cantilever");
-  scene.method = kerf::v1::Integration::SYMPLECTIC_EULER;
-  absl::StatusOr<std::unique_ptr<Simulation>> s = Simulation::Create(std::move(scene));
+  absl::StatusOr<std::unique_ptr<Simulation>> s = Simulation::Create(*LoadScene("bar-cantilever"));
   ASSERT_TRUE(s.ok()) << s.status();
   EXPECT_NEAR((*s)->time_step(), 0.9 * (*s)->critical_time_step(), 1e-15);
   for (int step = 0; step < 20000; ++step) (*s)->Step();
