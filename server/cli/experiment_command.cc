@@ -142,20 +142,21 @@ absl::StatusOr<std::string> LiveCut(bool json) {
       "blew up: energy over %g times that at the first pose\n\n"
       "| integration | cut | blew up | after (s) | largest energy ratio | largest speed (m/s) | "
       "smallest height (mm) | critical step (us) | step (us) | cut tets | tets after | held | "
-      "dropped | valid | wall s per simulated s |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "dropped | valid | wall s per simulated s | solve iterations per step (median, max) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       experiment.scene(), experiment.settle_seconds(), experiment.path(), experiment.slow_down(),
       experiment.pose_rate_hz(), experiment.blow_up_energy_ratio());
   for (const kerf::v1::LiveCutRow& r : experiment.rows()) {
     absl::StrAppendFormat(&out,
                           "| %s | %s | %s | %.3f | %.3g | %.3g | %.3g | %.3g | %.4g | %u | %u | %u "
-                          "| %u | %s | %.3g |\n",
+                          "| %u | %s | %.3g | %u, %u |\n",
                           r.integration(), r.cut_mode(), r.blew_up() ? "YES" : "no",
                           r.blew_up_after(), r.largest_energy_ratio(), r.largest_speed(),
                           1e3 * r.smallest_height(), 1e6 * r.critical_time_step(),
                           1e6 * r.time_step(), r.cut_tets(), r.tets_after(), r.held_poses(),
                           r.dropped_hits(), r.valid() ? "yes" : "NO",
-                          r.wall_seconds_per_simulated_second());
+                          r.wall_seconds_per_simulated_second(), r.solve_iterations_median(),
+                          r.solve_iterations_max());
   }
   return out;
 }

@@ -1,5 +1,6 @@
 #include "sim/live_cut.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -50,10 +51,15 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   if (!created.ok()) return created.status();
   Simulation& sim = **created;
   double time = 0;
+  std::vector<int> iterations;  // of the linear solves from the first pose
+  bool cutting = false;
   auto step_to = [&](double until) {
     while (time < until) {
       sim.Step();
       time += sim.time_step();
+      if (cutting && sim.last_implicit_solve() != nullptr) {
+        iterations.push_back(sim.last_implicit_solve()->iterations);
+      }
     }
   };
   step_to(options.settle_seconds);
@@ -65,6 +71,7 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   const double pose_period = 1 / options.pose_rate_hz;
   double largest_ratio = 1, largest_speed = 0;
   const auto wall_start = std::chrono::steady_clock::now();
+  cutting = true;
   for (int n = 0; n * pose_period <= duration + 1e-12; ++n) {
     const double elapsed = n * pose_period;
     cut::BladePose pose = PoseAt(path, elapsed / options.slow_down);
@@ -87,6 +94,11 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   row.set_wall_seconds_per_simulated_second(wall / (time - start_time));
+  if (!iterations.empty()) {
+    std::sort(iterations.begin(), iterations.end());
+    row.set_solve_iterations_median(iterations[iterations.size() / 2]);
+    row.set_solve_iterations_max(iterations.back());
+  }
   row.set_largest_energy_ratio(largest_ratio);
   row.set_largest_speed(largest_speed);
   row.set_smallest_height(SmallestHeight(sim.mesh()));

@@ -28,9 +28,11 @@ absl::StatusOr<std::unique_ptr<Simulation>> Simulation::Create(Scene scene) {
     if (!u.ok()) return u.status();
     sim->state_.displacement = *std::move(u);
   } else if (sim->implicit()) {
-    sim->integrator_ = std::make_unique<fem::ImplicitIntegrator>(
+    auto implicit = std::make_unique<fem::ImplicitIntegrator>(
         *sim->model_, sim->scene_.conditions,
         fem::ImplicitSolveOptions{.tolerance = kImplicitTolerance});
+    sim->implicit_ = implicit.get();
+    sim->integrator_ = std::move(implicit);
   } else {
     sim->integrator_ =
         std::make_unique<fem::ExplicitIntegrator>(*sim->model_, sim->scene_.conditions);

@@ -260,7 +260,10 @@ TEST(KerfCli, LiveCutExperimentShowsExplicitBlowUpsAndImplicitStability) {
     EXPECT_EQ(r.tets_after(), 928u) << r.cut_mode();
     EXPECT_EQ(r.dropped_hits(), 0u) << r.cut_mode();
     EXPECT_TRUE(r.valid()) << r.cut_mode();
+    EXPECT_GT(r.solve_iterations_max(), 0u) << r.cut_mode();
+    EXPECT_LE(r.solve_iterations_median(), r.solve_iterations_max()) << r.cut_mode();
   }
+  EXPECT_EQ(experiment.rows(0).solve_iterations_max(), 0u);  // explicit: no solve
 }
 
 TEST(KerfCli, CutRefusesABadPathNamingThePose) {
