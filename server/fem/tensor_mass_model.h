@@ -45,6 +45,8 @@ class TensorMassModel {
   // INVALID_ARGUMENT (and nothing applied) if an added or moved tet has zero rest volume.
   // O(tets changed).
   absl::Status SyncWithMesh();
+  // Whether the mesh has changed since the last sync (or creation).
+  bool InSyncWithMesh() const { return synced_ == mesh_->change_log().Mark(); }
 
   // f = K u: the paper's Eq. 2, f_i = K_ii u_i + sum_j K_ij u_j. u and f are indexed by vertex
   // index and must hold mesh.vertex_index_bound() entries. Only the entries of active vertices

@@ -74,7 +74,9 @@ absl::Status Simulation::FollowCut() {
   // Slots of vertices the cutter made and removed again (dropped hits) count too: the model
   // and the state cover every slot of the mesh.
   const std::size_t n = scene_.mesh.vertex_index_bound();
-  if (made.empty() && state_.displacement.size() == n) return absl::OkStatus();
+  if (made.empty() && state_.displacement.size() == n && model_->InSyncWithMesh()) {
+    return absl::OkStatus();
+  }
   if (absl::Status s = model_->SyncWithMesh(); !s.ok()) return s;
   state_.displacement.resize(n, Eigen::Vector3d::Zero());
   state_.velocity.resize(n, Eigen::Vector3d::Zero());
