@@ -187,6 +187,8 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_moved(static_cast<std::uint32_t>(s.moved));
   report.set_held_poses(static_cast<std::uint32_t>(s.held_poses));
   report.set_frozen_tets(static_cast<std::uint32_t>(s.frozen_tets));
+  report.set_nonconforming_plans(static_cast<std::uint32_t>(s.nonconforming_plans));
+  report.set_thin_temporary_plans(static_cast<std::uint32_t>(s.thin_temporary_plans));
   report.set_tets_after(static_cast<std::uint32_t>(m->tet_count()));
   report.set_cut_tets(static_cast<std::uint32_t>(s.cut_tets));
   report.set_new_tets(static_cast<std::uint32_t>(s.new_tets));

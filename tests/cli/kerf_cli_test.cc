@@ -266,6 +266,27 @@ TEST(KerfCli, LiveCutExperimentShowsExplicitBlowUpsAndImplicitStability) {
   EXPECT_EQ(experiment.rows(0).solve_iterations_max(), 0u);  // explicit: no solve
 }
 
+// The report counts why poses were held: on the curved path the blade skims lattice faces,
+// so temporary pieces would be thinner than the guard and the tets kept instead no longer
+// match their neighbours; the straight path holds none.
+TEST(KerfCli, CutReportsWhyPosesWereHeld) {
+  kerf::v1::CutReport reports[2];
+  const char* paths[] = {"lattice-curved", "lattice-straight"};
+  for (int i = 0; i < 2; ++i) {
+    const CliResult run = Kerf(
+        absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR, "/server/cut/paths/", paths[i],
+                     ".json --out ", ::testing::TempDir(), "/held.vtu --progressive", " --json"));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &reports[i]).ok());
+  }
+  EXPECT_GT(reports[0].held_poses(), 0u);
+  EXPECT_GT(reports[0].thin_temporary_plans(), 0u);
+  EXPECT_GT(reports[0].nonconforming_plans(), 0u);
+  EXPECT_EQ(reports[1].held_poses(), 0u);
+  EXPECT_EQ(reports[1].thin_temporary_plans(), 0u);
+  EXPECT_EQ(reports[1].nonconforming_plans(), 0u);
+}
+
 TEST(KerfCli, CutRefusesABadPathNamingThePose) {
   const std::string dir = ::testing::TempDir();
   ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 2 2 2 --out ", dir, "/small.msh")).exit_code, 0);
