@@ -51,18 +51,18 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   if (!created.ok()) return created.status();
   Simulation& sim = **created;
   double time = 0;
-  std::vector<int> iterations;  // of the linear solves from the first pose
-  bool cutting = false;
+  std::vector<int> iterations;  // of the linear solves
   auto step_to = [&](double until) {
     while (time < until) {
       sim.Step();
       time += sim.time_step();
-      if (cutting && sim.last_implicit_solve() != nullptr) {
+      if (sim.last_implicit_solve() != nullptr) {
         iterations.push_back(sim.last_implicit_solve()->iterations);
       }
     }
   };
   step_to(options.settle_seconds);
+  iterations.clear();  // only those from the first pose count
 
   kerf::v1::LiveCutRow row;
   const double start_energy = fem::MechanicalEnergy(sim.model(), sim.state());
@@ -71,7 +71,6 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   const double pose_period = 1 / options.pose_rate_hz;
   double largest_ratio = 1, largest_speed = 0;
   const auto wall_start = std::chrono::steady_clock::now();
-  cutting = true;
   for (int n = 0; n * pose_period <= duration + 1e-12; ++n) {
     const double elapsed = n * pose_period;
     cut::BladePose pose = PoseAt(path, elapsed / options.slow_down);
