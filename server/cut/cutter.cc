@@ -85,6 +85,12 @@ constexpr double kTipMargin = 1e-3;
 // or face would make tets as thin as its last step.
 constexpr double kMinTemporaryHeight = 0.02;
 
+// The tet's volume at rest, positive when its corners are in the mesh's order.
+double SignedVolume(const mesh::TetMesh& mesh, const mesh::TetVertices& t) {
+  return geometry::SignedVolume(mesh.rest_position(t[0]), mesh.rest_position(t[1]),
+                                mesh.rest_position(t[2]), mesh.rest_position(t[3]));
+}
+
 // The tet's smallest height at rest.
 double SmallestHeight(const mesh::TetMesh& mesh, const mesh::TetVertices& t) {
   return geometry::SmallestHeight(mesh.rest_position(t[0]), mesh.rest_position(t[1]),
@@ -501,10 +507,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
         const mesh::TetVertices corners = mesh_->tet(t);
         (void)mesh_->RemoveTet(t);
         for (mesh::TetVertices piece : split.tets) {
-          if (geometry::SignedVolume(rest(piece[0]), rest(piece[1]), rest(piece[2]),
-                                     rest(piece[3])) < 0) {
-            std::swap(piece[2], piece[3]);
-          }
+          if (SignedVolume(*mesh_, piece) < 0) std::swap(piece[2], piece[3]);
           const absl::StatusOr<TetId> added = mesh_->AddTet(piece);
           assert(added.ok());
           source_tet_[*added] = SourceTet(t);
@@ -704,8 +707,27 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         ++last_pose_.tets_by_case[table_case];
       }
       const bool tip_inside = inside && tip_weights.minCoeff() >= kTipMargin;
+      using Apex = SplitInputs::Apex;
+      SplitInputs inputs{cuts, used, tip_inside && !cuts.empty() ? Apex::kTip : Apex::kNone};
+      if (const OpenTet& open = open_.at(t);
+          inside && !open.pieces.empty() && open.inputs == inputs) {
+        // Only the blade moved: the same pieces, their points moved, unless one would now be
+        // inverted or too thin (then they are chosen anew).
+        if (inputs.apex == Apex::kTip) temporary_point(InsidePlace(t), corners, tip_weights);
+        const double least = kMinTemporaryHeight * SmallestHeight(*mesh_, corners);
+        Plan moved{.tet = t, .temporary = true, .table_case = table_case, .moved = true};
+        for (const TetId piece : open.pieces) moved.split.tets.push_back(mesh_->tet(piece));
+        if (std::all_of(moved.split.tets.begin(), moved.split.tets.end(),
+                        [&](const mesh::TetVertices& piece) {
+                          return SignedVolume(*mesh_, piece) > 0 &&
+                                 SmallestHeight(*mesh_, piece) >= least;
+                        })) {
+          plans.push_back(std::move(moved));
+          continue;
+        }
+      }
       TetSplit split;
-      if (tip_inside && !cuts.empty()) {
+      if (inputs.apex == Apex::kTip) {
         // The crack reaches the tip.
         split = SplitAsStar(corners, cuts, used,
                             temporary_point(InsidePlace(t), corners, tip_weights), rest);
@@ -714,7 +736,8 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       } else if (used.empty() && !cuts.empty()) {
         split = SplitCompletelyCutTet(corners, cuts);
       } else if (used.empty()) {
-        plans.push_back({t, inside, table_case, {}});  // nothing can open: the tet stays
+        // Nothing can open: the tet stays.
+        plans.push_back({.tet = t, .temporary = inside, .table_case = table_case});
         continue;
       }
       if (split.tets.empty() && !used.empty()) {
@@ -724,6 +747,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         if (middle.minCoeff() >= kTipMargin) {
           split = SplitAsStar(corners, cuts, used,
                               temporary_point(InsidePlace(t), corners, middle, false), rest);
+          inputs.apex = Apex::kMiddle;
         }
       }
       if (split.tets.empty()) {
@@ -741,7 +765,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
             })) {
           // Kept as it is, its temporary points where the blade was.
           ++statistics_.thin_temporary_plans;
-          Plan keep{t, true, table_case, {}, true};
+          Plan keep{.tet = t, .temporary = true, .table_case = table_case, .keep = true};
           for (const TetId piece : open_.at(t).pieces) keep.split.tets.push_back(mesh_->tet(piece));
           for (const auto& entry : temporary_points_) {
             const VertexId v = entry.second.vertex;
@@ -754,7 +778,11 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           continue;
         }
       }
-      plans.push_back({t, inside, table_case, std::move(split)});
+      plans.push_back({.tet = t,
+                       .temporary = inside,
+                       .table_case = table_case,
+                       .split = std::move(split),
+                       .inputs = std::move(inputs)});
     }
 
     for (const auto& [place, point] : kept_points) {
@@ -764,7 +792,11 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         failed_temporary = true;
       }
     }
-    if (!failed_temporary && failed_final.empty()) {
+    // Plans that change no tet keep the mesh as conforming as it is.
+    const bool tets_change = std::any_of(plans.begin(), plans.end(), [&](const Plan& plan) {
+      return !plan.keep && !plan.moved && !(plan.temporary && plan.split.tets.empty());
+    });
+    if (!failed_temporary && failed_final.empty() && tets_change) {
       for (const std::size_t k : NonConformingPlans(plans)) {
         ++statistics_.nonconforming_plans;
         if (plans[k].temporary) {
@@ -830,6 +862,10 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     std::vector<mesh::TetVertices> closed;
     for (Plan& plan : plans) {
       if (plan.keep) continue;
+      if (plan.moved) {
+        ++statistics_.moved;  // only its points moved, in place: its pieces stay
+        continue;
+      }
       OpenTet& open = open_.at(plan.tet);
       const mesh::TetVertices corners = mesh_->tet_even_if_removed(plan.tet);
       if (plan.split.tets.empty()) {
@@ -848,9 +884,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         signature.push_back(c);
       }
       std::sort(signature.begin(), signature.end());
-      const auto positive = [&](const mesh::TetVertices& v) {
-        return geometry::SignedVolume(rest(v[0]), rest(v[1]), rest(v[2]), rest(v[3])) > 0;
-      };
+      const auto positive = [&](const mesh::TetVertices& v) { return SignedVolume(*mesh_, v) > 0; };
       if (plan.temporary && signature == open.signature &&
           std::all_of(open.pieces.begin(), open.pieces.end(),
                       [&](TetId piece) { return positive(mesh_->tet(piece)); })) {
@@ -878,6 +912,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         ++statistics_.rebuilt;
         open.pieces = std::move(kept);
         open.signature = std::move(signature);
+        open.inputs = std::move(plan.inputs);
       } else {
         // A point made inside it for good (the middle of its face points) stays.
         for (auto it = points.begin(); it != points.end();) {

@@ -159,11 +159,20 @@ class Cutter {
     }
   };
 
+  // What a temporary subdivision is made from. The pieces follow from these ids but for
+  // diagonals chosen on geometry, so while a pose finds the same ones only the points moved.
+  struct SplitInputs {
+    std::vector<EdgeCut> cuts;
+    std::vector<FacePoint> face_points;
+    enum class Apex { kNone, kTip, kMiddle } apex = Apex::kNone;  // the cone's, if a star
+    bool operator==(const SplitInputs&) const = default;
+  };
   // A tet with hits, progressive: what stands for it in the mesh now.
   struct OpenTet {
     std::vector<mesh::TetId> pieces;  // live tets replacing it; empty: it is itself in the mesh
     // The pieces' corners with temporary points named by place (see Signature).
     std::vector<std::array<std::uint64_t, 4>> signature;
+    SplitInputs inputs;  // of the pieces
   };
   // A temporary point of the applied subdivisions.
   struct TemporaryPoint {
@@ -207,8 +216,10 @@ class Cutter {
     mesh::TetId tet;
     bool temporary;
     int table_case;
-    TetSplit split;
-    bool keep = false;  // temporary, kept as it is: `split.tets` are its pieces now
+    TetSplit split = {};
+    bool keep = false;        // temporary, kept as it is: `split.tets` are its pieces now
+    bool moved = false;       // temporary, made from the same inputs: `split.tets` are its pieces
+    SplitInputs inputs = {};  // temporary: what `split` was made from
   };
   // The plans (by index) whose triangles on a face of their tet differ from those of the other
   // side: the plan there, or the live tets there if its tet is not open. Applying them all

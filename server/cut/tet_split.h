@@ -27,6 +27,7 @@ struct EdgeCut {
   int corner_b;
   mesh::VertexId near_a;  // the copy of the cut point that stays with corner a
   mesh::VertexId near_b;
+  bool operator==(const EdgeCut&) const = default;
 };
 
 enum class CutCase {
@@ -43,6 +44,7 @@ enum class CutCase {
 struct FacePoint {
   int face;  // the face opposite this local corner
   mesh::VertexId vertex;
+  bool operator==(const FacePoint&) const = default;
 };
 
 struct TetSplit {

@@ -422,12 +422,6 @@ void Session::Tick() {
   report.simulation_time = simulation_time_;
   report.blade_time = blade_time_;
   report.blade = last_applied_;
-  if (last_applied_) {
-    const sim::ToolReaction reaction =
-        sim::MeasureToolReaction(*simulation_, *last_applied_, before_last_applied_);
-    report.tool_force = reaction.force;
-    report.tool_torque = reaction.torque;
-  }
   kerf::v1::StepStatistics& s = report.statistics;
   s.set_physics_steps(ticks_);
   s.set_physics_step_seconds(last_tick_seconds_);
@@ -459,11 +453,18 @@ void Session::Tick() {
   if (cutter_view_ != nullptr && (cutter_view_->DueAt(ticks_) || withdrawn_this_tick_)) {
     due.push_back({cutter_view_.get(), cutter_view_->frames.sequence() + 1, false});
   }
+  // The elastic forces, computed once for the tool reaction and the frames that carry them.
   std::vector<Eigen::Vector3d> nodal_forces;
-  if (std::any_of(due.begin(), due.end(),
-                  [](const Due& d) { return d.view->frames.level() == kerf::v1::FORCES; })) {
-    nodal_forces = ComputeElasticForces(*simulation_);
-    report.nodal_forces = nodal_forces;
+  const bool frames_need_forces = std::any_of(due.begin(), due.end(), [](const Due& d) {
+    return d.view->frames.level() == kerf::v1::FORCES;
+  });
+  if (last_applied_ || frames_need_forces) nodal_forces = ComputeElasticForces(*simulation_);
+  if (frames_need_forces) report.nodal_forces = nodal_forces;
+  if (last_applied_) {
+    const sim::ToolReaction reaction =
+        sim::MeasureToolReaction(*simulation_, nodal_forces, *last_applied_, before_last_applied_);
+    report.tool_force = reaction.force;
+    report.tool_torque = reaction.torque;
   }
   for (const Due& d : due) {
     if (!d.view->subscribers.empty()) Publish(*d.view, d.sequence, report);

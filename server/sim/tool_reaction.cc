@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cassert>
 #include <vector>
 
 #include "geometry/tet_measures.h"
@@ -17,7 +18,9 @@ bool Inside(const mesh::TetMesh& m, const mesh::TetVertices& v, const Eigen::Vec
 
 }  // namespace
 
-ToolReaction MeasureToolReaction(const Simulation& simulation, const cut::BladePose& pose,
+ToolReaction MeasureToolReaction(const Simulation& simulation,
+                                 std::span<const Eigen::Vector3d> elastic_forces,
+                                 const cut::BladePose& pose,
                                  const std::optional<cut::BladePose>& previous) {
   ToolReaction reaction;
   const cut::Cutter* cutter = simulation.cutter();
@@ -25,30 +28,15 @@ ToolReaction MeasureToolReaction(const Simulation& simulation, const cut::BladeP
   const std::vector<mesh::TetVertices> holding = cutter->TetsHoldingBlade(pose);
   if (holding.empty()) return reaction;
   const mesh::TetMesh& m = simulation.mesh();
+  assert(elastic_forces.size() >= m.vertex_index_bound());
   std::vector<mesh::VertexId> vertices;
   for (const mesh::TetVertices& corners : holding) {
     for (const mesh::VertexId v : corners) vertices.push_back(v);
   }
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  // (K u)_v = K_vv u_v + sum over v's neighbours w of K_vw u_w: what v's tissue holds.
-  const fem::TensorMassModel& model = simulation.model();
-  const std::vector<Eigen::Vector3d>& u = simulation.state().displacement;
   for (const mesh::VertexId v : vertices) {
-    Eigen::Vector3d f = model.vertex_tensor(v) * u[mesh::Index(v)];
-    std::vector<mesh::VertexId> neighbours;
-    for (const mesh::TetId t : m.TetsAround(v)) {
-      for (const mesh::VertexId w : m.tet(t)) {
-        if (w != v) neighbours.push_back(w);
-      }
-    }
-    std::sort(neighbours.begin(), neighbours.end());
-    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-    for (const mesh::VertexId w : neighbours) {
-      const fem::EdgeTensor* e = model.FindEdge(v, w);
-      if (e == nullptr) continue;
-      f += (e->a == v ? e->k_ab : Eigen::Matrix3d(e->k_ab.transpose())) * u[mesh::Index(w)];
-    }
+    const Eigen::Vector3d f = -elastic_forces[mesh::Index(v)];  // what v's tissue holds
     reaction.force += f;
     reaction.torque += (m.current_position(v) - pose.tip).cross(f);
   }

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <span>
 
 #include "cut/blade.h"
 #include "sim/simulation.h"
@@ -19,11 +20,14 @@ struct ToolReaction {
 // 1 cm deep cut, the order measured for scalpels in soft tissue).
 inline constexpr double kCuttingResistance = 100.0;
 
-// The elastic forces K u of the tissue on the vertices of the tets that hold the blade (the
-// cut front pulls or pushes on it), plus the cutting resistance opposed to the tip's motion
-// since `previous` (none when it has not moved). Zero when the blade touches nothing.
-// O(tets near the blade + their edges).
-ToolReaction MeasureToolReaction(const Simulation& simulation, const cut::BladePose& pose,
+// What the blade at `pose` holds: K u at the vertices of the tets that hold it (the cut front
+// pulls or pushes on it), taken from `elastic_forces` (-K u by vertex index, N: the model's
+// MultiplyStiffness negated), plus the cutting resistance opposed to the tip's motion since
+// `previous` (none when it has not moved). Zero when the blade touches nothing. O(tets near
+// the blade).
+ToolReaction MeasureToolReaction(const Simulation& simulation,
+                                 std::span<const Eigen::Vector3d> elastic_forces,
+                                 const cut::BladePose& pose,
                                  const std::optional<cut::BladePose>& previous);
 
 }  // namespace kerf::sim
