@@ -10,6 +10,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "geometry/moving_crossing.h"
+#include "geometry/segment_box.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
 #include "mesh/face_tiling.h"
@@ -344,6 +345,11 @@ void Cutter::Join(std::span<const TetId> tets) {
 bool Cutter::BladeInside(const mesh::TetVertices& v, const BladePose& pose) const {
   std::array<Eigen::Vector3d, 4> x;
   for (int i = 0; i < 4; ++i) x[i] = mesh_->current_position(v[i]);
+  const Eigen::Vector3d lo = x[0].cwiseMin(x[1]).cwiseMin(x[2].cwiseMin(x[3]));
+  const Eigen::Vector3d hi = x[0].cwiseMax(x[1]).cwiseMax(x[2].cwiseMax(x[3]));
+  if (!geometry::SegmentMeetsBox(pose.tip, pose.heel, lo, hi, 1e-6 * (hi - lo).norm())) {
+    return false;  // the blade misses the tet's bounding box
+  }
   for (const Eigen::Vector3d& end : {pose.tip, pose.heel}) {
     if (geometry::ContainsPoint(x[0], x[1], x[2], x[3], end)) return true;
   }

@@ -6,17 +6,6 @@
 #include <span>
 
 namespace kerf::fem {
-namespace {
-
-double Dot(std::span<const std::uint32_t> active, const std::vector<Eigen::Vector3d>& a,
-           const std::vector<Eigen::Vector3d>& b) {
-  double sum = 0;
-  for (const std::uint32_t i : active) sum += a[i].dot(b[i]);
-  return sum;
-}
-
-}  // namespace
-
 ImplicitIntegrator::ImplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
                                        ImplicitSolveOptions options)
     : model_(&model), options_(options) {
@@ -54,19 +43,15 @@ void ImplicitIntegrator::PrepareFor(double dt) {
   prepared_dt_ = dt;
 }
 
-void ImplicitIntegrator::MultiplySystem(double a, double b, const std::vector<Eigen::Vector3d>& p,
-                                        std::vector<Eigen::Vector3d>* q) {
+double ImplicitIntegrator::MultiplySystem(double a, double b, const std::vector<Eigen::Vector3d>& p,
+                                          std::vector<Eigen::Vector3d>* q) {
   model_->MultiplyStiffness(p, stiff_);
+  double pq = 0;
   for (const std::uint32_t i : model_->active_vertices()) {
     (*q)[i] = ((a * model_->masses()[i]) * p[i] + b * stiff_[i]).cwiseProduct(free_[i]);
+    pq += p[i].dot((*q)[i]);
   }
-}
-
-void ImplicitIntegrator::Precondition(const std::vector<Eigen::Vector3d>& r,
-                                      std::vector<Eigen::Vector3d>* z) const {
-  for (const std::uint32_t i : model_->active_vertices()) {
-    (*z)[i] = (inverse_diagonal_[i] * r[i]).cwiseProduct(free_[i]);
-  }
+  return pq;
 }
 
 void ImplicitIntegrator::Step(double dt, DynamicState* state) {
@@ -102,31 +87,35 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
                  .cwiseProduct(free_[i])
                  .squaredNorm();
   }
-  Precondition(residual_, &preconditioned_);
-  for (const std::uint32_t i : active) direction_[i] = preconditioned_[i];
-  double rz = Dot(active, residual_, preconditioned_);
+  double rz = 0, rr = 0;
+  for (const std::uint32_t i : active) {
+    direction_[i] = Precondition(i, residual_[i]);
+    rz += residual_[i].dot(direction_[i]);
+    rr += residual_[i].squaredNorm();
+  }
   const double goal = options_.tolerance * std::sqrt(scale);
   int iteration = 0;
-  double residual_norm = std::sqrt(Dot(active, residual_, residual_));
-  while (residual_norm > goal && iteration < options_.max_iterations) {
-    MultiplySystem(a, b, direction_, &product_);
-    const double curvature = Dot(active, direction_, product_);
+  while (std::sqrt(rr) > goal && iteration < options_.max_iterations) {
+    const double curvature = MultiplySystem(a, b, direction_, &product_);
     if (!(curvature > 0)) break;  // converged to rounding
     const double step = rz / curvature;
+    double rz_next = 0;
+    rr = 0;
     for (const std::uint32_t i : active) {
       v[i] += step * direction_[i];
       residual_[i] -= step * product_[i];
+      preconditioned_[i] = Precondition(i, residual_[i]);
+      rz_next += residual_[i].dot(preconditioned_[i]);
+      rr += residual_[i].squaredNorm();
     }
-    Precondition(residual_, &preconditioned_);
-    const double rz_next = Dot(active, residual_, preconditioned_);
     const double keep = rz_next / rz;
     for (const std::uint32_t i : active) {
       direction_[i] = preconditioned_[i] + keep * direction_[i];
     }
     rz = rz_next;
-    residual_norm = std::sqrt(Dot(active, residual_, residual_));
     ++iteration;
   }
+  const double residual_norm = std::sqrt(rr);
   last_solve_ = {iteration, scale > 0 ? residual_norm / std::sqrt(scale) : 0};
 
   for (const std::uint32_t i : active) {

@@ -49,11 +49,13 @@ class ImplicitIntegrator : public TimeIntegrator {
   const ImplicitSolveReport& last_solve() const { return last_solve_; }
 
  private:
-  // q = S (a M + b K) p, S zeroing the components that do not move.
-  void MultiplySystem(double a, double b, const std::vector<Eigen::Vector3d>& p,
-                      std::vector<Eigen::Vector3d>* q);
-  // z = S P^-1 r, P the system's 3x3 diagonal blocks.
-  void Precondition(const std::vector<Eigen::Vector3d>& r, std::vector<Eigen::Vector3d>* z) const;
+  // q = S (a M + b K) p, S zeroing the components that do not move; returns p . q.
+  double MultiplySystem(double a, double b, const std::vector<Eigen::Vector3d>& p,
+                        std::vector<Eigen::Vector3d>* q);
+  // z = S P^-1 r at vertex i, P the system's 3x3 diagonal blocks.
+  Eigen::Vector3d Precondition(std::uint32_t i, const Eigen::Vector3d& r) const {
+    return (inverse_diagonal_[i] * r).cwiseProduct(free_[i]);
+  }
   void PrepareFor(double dt);
 
   const TensorMassModel* model_;
