@@ -26,8 +26,8 @@ namespace kerf::cli {
 namespace {
 
 constexpr absl::string_view kUsage =
-    "kerf cut MESH --path PATH.json --out OUT.vtu [--deferred|--progressive] [--trace OUT.jsonl] "
-    "[--dump-every-pose DIR] [--json]";
+    "kerf cut MESH --path PATH.json --out OUT.vtu [--deferred|--progressive] "
+    "[--min-temporary-height F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
 // The mesh of a scene (an embedded name or a .textproto file) in its initial state, or of a
 // mesh file.
@@ -88,9 +88,10 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_poses(static_cast<std::uint32_t>(poses.size()));
   report.set_tets_before(static_cast<std::uint32_t>(m->tet_count()));
   report.set_mode(options.mode == cut::CutMode::kProgressive ? "progressive" : "deferred");
-  absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(
-      m, mesh::MeanEdgeLength(*m),
-      LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()), options.mode);
+  absl::StatusOr<cut::Cutter> cutter =
+      cut::Cutter::Create(m, mesh::MeanEdgeLength(*m),
+                          LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()),
+                          options.mode, options.min_temporary_height);
   if (!cutter.ok()) return cutter.status();
   std::FILE* trace = nullptr;
   if (!options.trace_path.empty()) {
@@ -189,6 +190,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_frozen_tets(static_cast<std::uint32_t>(s.frozen_tets));
   report.set_nonconforming_plans(static_cast<std::uint32_t>(s.nonconforming_plans));
   report.set_thin_temporary_plans(static_cast<std::uint32_t>(s.thin_temporary_plans));
+  report.set_uncovered_temporary_plans(static_cast<std::uint32_t>(s.uncovered_temporary_plans));
   report.set_tets_after(static_cast<std::uint32_t>(m->tet_count()));
   report.set_cut_tets(static_cast<std::uint32_t>(s.cut_tets));
   report.set_new_tets(static_cast<std::uint32_t>(s.new_tets));
@@ -231,6 +233,14 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
           absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
     }
     options.mode = cut::CutMode::kProgressive;
+  }
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> least_arg =
+      rest.TakeOption("--min-temporary-height", 1);
+  if (!least_arg.ok()) return least_arg.status();
+  if (least_arg->has_value()) {
+    absl::StatusOr<double> least = ParseDoubleArg((**least_arg)[0], "--min-temporary-height");
+    if (!least.ok()) return least.status();
+    options.min_temporary_height = *least;
   }
   for (auto [flag, into] :
        {std::pair<absl::string_view, std::string*>{"--trace", &options.trace_path},

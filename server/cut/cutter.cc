@@ -80,11 +80,11 @@ mesh::TetMesh::TetList LiveTetsAround(const mesh::TetMesh& mesh,
 // from it would make slivers.
 constexpr double kTipMargin = 1e-3;
 
-// A temporary tet lower than this fraction of the smallest height of the tet it stands in for
-// is not made (the tet keeps its previous subdivision until the blade has moved on): the
-// explicit model's stable step shrinks with the smallest height, and a blade just past an edge
-// or face would make tets as thin as its last step.
-constexpr double kMinTemporaryHeight = 0.02;
+// A temporary tet may be as thin as this share of the thinnest fraction the hits force (an
+// edge cut a fraction f from a corner makes pieces about f thin, final or temporary, so
+// holding the pose for them would only delay the opening), and of a permanent face point's
+// smallest coordinate.
+constexpr double kForcedThinShare = 0.25;
 
 // The tet's volume at rest, positive when its corners are in the mesh's order.
 double SignedVolume(const mesh::TetMesh& mesh, const mesh::TetVertices& t) {
@@ -130,10 +130,15 @@ int ProgressiveCase(int edges, int faces, int temporary_faces, bool tip_inside,
 }
 
 absl::StatusOr<Cutter> Cutter::Create(mesh::TetMesh* mesh, double cell_size,
-                                      const BladeLimits& limits, CutMode mode) {
+                                      const BladeLimits& limits, CutMode mode,
+                                      double min_temporary_height) {
+  if (!(min_temporary_height >= 0 && min_temporary_height < 1)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "the least temporary height must be a fraction in [0, 1), got ", min_temporary_height));
+  }
   absl::StatusOr<TetGrid> grid = TetGrid::Build(*mesh, cell_size, 0.25 * cell_size);
   if (!grid.ok()) return grid.status();
-  return Cutter(mesh, *std::move(grid), cell_size, limits, mode);
+  return Cutter(mesh, *std::move(grid), cell_size, limits, mode, min_temporary_height);
 }
 
 absl::Status Cutter::ApplyPose(const BladePose& pose) {
@@ -557,6 +562,22 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
   }
 }
 
+double Cutter::LeastTemporaryHeight(const mesh::TetVertices& corners,
+                                    const std::vector<EdgeCut>& cuts,
+                                    const std::vector<FacePoint>& face_points) const {
+  double forced = 1;  // the thinnest fraction the permanent hits impose
+  for (const EdgeCut& c : cuts) {
+    const double f = edge_hits_.at(MakeEdgeKey(corners[c.corner_a], corners[c.corner_b])).fraction;
+    forced = std::min({forced, f, 1 - f});
+  }
+  for (const FacePoint& p : face_points) {
+    const auto hit = face_hits_.find(MakeFaceKey(corners, mesh::kTetFaces[p.face]));
+    if (hit != face_hits_.end()) forced = std::min(forced, hit->second.barycentric.minCoeff());
+  }
+  return std::min(min_temporary_height_, kForcedThinShare * forced) *
+         SmallestHeight(*mesh_, corners);
+}
+
 void Cutter::UpdateOpenTets(const BladePose* pose) {
   const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
   const auto current = [&](VertexId v) { return mesh_->current_position(v); };
@@ -720,7 +741,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         // Only the blade moved: the same pieces, their points moved, unless one would now be
         // inverted or too thin (then they are chosen anew).
         if (inputs.apex == Apex::kTip) temporary_point(InsidePlace(t), corners, tip_weights);
-        const double least = kMinTemporaryHeight * SmallestHeight(*mesh_, corners);
+        const double least = LeastTemporaryHeight(corners, cuts, used);
         Plan moved{.tet = t, .temporary = true, .table_case = table_case, .moved = true};
         for (const TetId piece : open.pieces) moved.split.tets.push_back(mesh_->tet(piece));
         if (std::all_of(moved.split.tets.begin(), moved.split.tets.end(),
@@ -758,6 +779,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       }
       if (split.tets.empty()) {
         if (inside) {
+          ++statistics_.uncovered_temporary_plans;
           failed_temporary = true;
         } else {
           failed_final.push_back(t);
@@ -765,7 +787,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         continue;
       }
       if (inside) {
-        const double least = kMinTemporaryHeight * SmallestHeight(*mesh_, corners);
+        const double least = LeastTemporaryHeight(corners, cuts, used);
         if (std::any_of(split.tets.begin(), split.tets.end(), [&](const mesh::TetVertices& piece) {
               return SmallestHeight(*mesh_, piece) < least;
             })) {
@@ -811,9 +833,11 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           failed_final.push_back(plans[k].tet);
         }
       }
-      // A temporary subdivision at fault holds the pose; final ones alone are frozen.
-      if (failed_temporary) failed_final.clear();
     }
+    // A temporary subdivision at fault holds the pose, and a held pose drops nothing: the
+    // final subdivisions that failed with it may have failed for its sake (a neighbour kept
+    // as it was), so they are tried again at the next pose. Final ones alone are frozen.
+    if (failed_temporary) failed_final.clear();
     if (failed_temporary || !failed_final.empty()) {
       take_back_unused();  // nothing was applied: the mesh is as it was
       put_back_moved();

@@ -62,6 +62,12 @@ struct MadeVertex {
 
 enum class CutMode { kProgressive, kDeferred };
 
+// Progressive: a temporary tet lower than this fraction of the smallest height of the tet it
+// stands in for is not made (the tet keeps its previous subdivision, and the pose is held if a
+// neighbour then differs), unless the hits force thinner pieces anyway (an edge cut near a
+// corner). Thin temporaries cost the implicit solve iterations (README: the lag it buys).
+inline constexpr double kDefaultMinTemporaryHeight = 0.02;
+
 // The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
 // temporary face points and whether the tip is inside. Case 8 and 9 have the same counts; in
 // 8 the two cut edges share a corner, in 9 they are opposite. 0: none of the eleven.
@@ -89,6 +95,8 @@ struct CutStatistics {
   // Temporary subdivisions not made because a tet of theirs would be too thin (the tet kept
   // its previous one).
   std::size_t thin_temporary_plans = 0;
+  // Temporary subdivisions no case covers (the blade through an edge or in a face's plane).
+  std::size_t uncovered_temporary_plans = 0;
 };
 
 // What the last pose did (progressive cutting).
@@ -103,9 +111,11 @@ class Cutter {
  public:
   // The mesh must outlive the cutter and change only through it while it cuts. `cell_size`
   // (m) sets the grid; a mean edge length is a good choice. INVALID_ARGUMENT for a bad size.
+  // `min_temporary_height`: see kDefaultMinTemporaryHeight (0 turns the guard off).
   static absl::StatusOr<Cutter> Create(mesh::TetMesh* mesh, double cell_size,
                                        const BladeLimits& limits = {},
-                                       CutMode mode = CutMode::kDeferred);
+                                       CutMode mode = CutMode::kDeferred,
+                                       double min_temporary_height = kDefaultMinTemporaryHeight);
 
   // Applies one pose. INVALID_ARGUMENT (and nothing changed) for a bad pose. The first pose
   // only places the blade. Cost: the tets near the swept surface and the groups split.
@@ -182,12 +192,13 @@ class Cutter {
   };
 
   Cutter(mesh::TetMesh* mesh, TetGrid grid, double cell_size, const BladeLimits& limits,
-         CutMode mode)
+         CutMode mode, double min_temporary_height)
       : mesh_(mesh),
         grid_(std::move(grid)),
         memory_margin_(0.25 * cell_size),
         limits_(limits),
-        mode_(mode) {}
+        mode_(mode),
+        min_temporary_height_(min_temporary_height) {}
 
   // Records the hits of the blade moving from `from` to `to`, and returns the tets near it
   // (progressive: the open tets for their pieces).
@@ -209,6 +220,11 @@ class Cutter {
   bool Realisable(std::span<const mesh::VertexId> vertices) const;
   // The tets (as OwnerOf) with both vertices, or all three.
   std::vector<mesh::TetId> TetsWith(std::span<const mesh::VertexId> vertices) const;
+  // The height (m, at rest) under which a temporary piece of the tet is too thin to make: a
+  // share of its smallest height, less where its cut edges and permanent face points force
+  // thin pieces anyway.
+  double LeastTemporaryHeight(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                              const std::vector<FacePoint>& face_points) const;
   // Progressive: subdivides every open tet for the blade at `pose` (null: withdrawn).
   void UpdateOpenTets(const BladePose* pose);
   // What an open tet becomes in this pose: `split.tets` empty means it stays as it is.
@@ -254,6 +270,7 @@ class Cutter {
   double memory_margin_;  // m
   BladeLimits limits_;
   CutMode mode_;
+  double min_temporary_height_;  // a fraction of the smallest height
   std::optional<BladePose> previous_;
   // The current positions, when the previous pose was applied, of the vertices then near the
   // blade (by index).

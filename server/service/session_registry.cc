@@ -84,6 +84,7 @@ absl::StatusOr<CreatedSession> SessionRegistry::Create(
   // The journal records what the session runs with, not what defaulted to it, so that a
   // replay means the same whatever the defaults become.
   spec->mutable_cutting()->set_mode(scene->cut_mode);
+  spec->mutable_cutting()->set_min_temporary_height(scene->min_temporary_height);
   spec->mutable_integration()->set_method(scene->method);
   SessionOptions session_options = options_.session;
   if (request.physics_rate_hz() != 0) session_options.physics_rate_hz = request.physics_rate_hz();

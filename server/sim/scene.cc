@@ -129,6 +129,14 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
     return absl::InvalidArgumentError(
         absl::StrCat("cutting.mode must be DEFERRED or PROGRESSIVE, got ", scene.cut_mode));
   }
+  if (spec.cutting().has_min_temporary_height()) {
+    scene.min_temporary_height = spec.cutting().min_temporary_height();
+    if (!(scene.min_temporary_height >= 0 && scene.min_temporary_height < 1)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("cutting.min_temporary_height must be a fraction in [0, 1), got ",
+                       scene.min_temporary_height));
+    }
+  }
   if (scene.cut_mode == kerf::v1::Cutting::MODE_UNSPECIFIED) {
     scene.cut_mode = kerf::v1::Cutting::DEFERRED;
   }

@@ -8,6 +8,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "cut/cutter.h"
 #include "fem/boundary_conditions.h"
 #include "fem/material.h"
 #include "kerf/v1/scene.pb.h"
@@ -24,6 +25,7 @@ struct Scene {
   double time_step = 0;   // s; 0 chooses (see kerf.v1.Integration.time_step)
   kerf::v1::Needs needs;  // carried for the service; the simulation itself needs no output
   kerf::v1::Cutting::Mode cut_mode = kerf::v1::Cutting::DEFERRED;
+  double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // see kerf.v1.Cutting
 };
 
 // Parses protobuf text format. INVALID_ARGUMENT "source:line:column: ..." for a syntax error

@@ -53,7 +53,8 @@ absl::Status Simulation::ApplyBladePose(const cut::BladePose& pose) {
     absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(
         &scene_.mesh, mesh::MeanEdgeLength(scene_.mesh), {},
         scene_.cut_mode == kerf::v1::Cutting::DEFERRED ? cut::CutMode::kDeferred
-                                                       : cut::CutMode::kProgressive);
+                                                       : cut::CutMode::kProgressive,
+        scene_.min_temporary_height);
     if (!cutter.ok()) return cutter.status();
     cutter_ = std::make_unique<cut::Cutter>(*std::move(cutter));
   } else if (absl::Status s = cutter_->MeshDeformed(); !s.ok()) {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "absl/strings/str_cat.h"
+#include "cut/cutter.h"
 #include "service/journal_file.h"
 
 namespace kerf::service {
@@ -66,8 +67,8 @@ TEST_F(SessionRegistryJournalTest, ASessionLeftOpenIsRestoredWithItsTokens) {
   EXPECT_EQ((*session)->Info().tets(), 576u);
 }
 
-// A journal names the cut mode and method its session ran with, even where the scene left them
-// to the defaults, so that it replays alike if the defaults change.
+// A journal names the cut mode, height guard and method its session ran with, even where the scene
+// left them to the defaults, so that it replays alike if the defaults change.
 TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsChose) {
   std::string id;
   {
@@ -82,6 +83,8 @@ TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsCho
   ASSERT_GE(journal->records.size(), 1u);
   const kerf::v1::Scene& scene = journal->records[0].start().scene();
   EXPECT_EQ(scene.cutting().mode(), kerf::v1::Cutting::DEFERRED);
+  ASSERT_TRUE(scene.cutting().has_min_temporary_height());
+  EXPECT_EQ(scene.cutting().min_temporary_height(), cut::kDefaultMinTemporaryHeight);
   EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::SYMPLECTIC_EULER);
 }
 

@@ -74,6 +74,11 @@ TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
        "-1"},
       {Tension() + "cutting { mode: 7 }\n",
        "scene 'lattice-tension': cutting.mode must be DEFERRED or PROGRESSIVE, got 7"},
+      {Tension() + "cutting { min_temporary_height: -0.01 }\n",
+       "scene 'lattice-tension': cutting.min_temporary_height must be a fraction in [0, 1), got "
+       "-0.01"},
+      {Tension() + "cutting { min_temporary_height: 1 }\n",
+       "scene 'lattice-tension': cutting.min_temporary_height must be a fraction in [0, 1), got 1"},
       {Tension() + "integration { method: 9 }\n",
        "scene 'lattice-tension': integration.method must be SYMPLECTIC_EULER, IMPLICIT_EULER or "
        "STATIC, got 9"},
