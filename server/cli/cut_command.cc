@@ -26,7 +26,7 @@ namespace kerf::cli {
 namespace {
 
 constexpr absl::string_view kUsage =
-    "kerf cut MESH --path PATH.json --out OUT.vtu [--deferred|--progressive] "
+    "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] "
     "[--min-temporary-height F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
 // The mesh of a scene (an embedded name or a .textproto file) in its initial state, or of a
@@ -227,13 +227,11 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   const bool json = rest.TakeFlag("--json");
   CutOptions options;
   const bool deferred = rest.TakeFlag("--deferred");
-  if (rest.TakeFlag("--progressive")) {
-    if (deferred) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
-    }
-    options.mode = cut::CutMode::kProgressive;
+  if (rest.TakeFlag("--progressive") && deferred) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
   }
+  if (deferred) options.mode = cut::CutMode::kDeferred;
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> least_arg =
       rest.TakeOption("--min-temporary-height", 1);
   if (!least_arg.ok()) return least_arg.status();

@@ -1,4 +1,4 @@
-// kerf cut MESH --path PATH.json --out OUT.vtu [--deferred|--progressive] [--trace OUT.jsonl]
+// kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--trace OUT.jsonl]
 // [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a scene (its initial
 // state: rest, or the static solution of a STATIC scene) and writes the result. OUT.vtu has the
 // current positions as points, the point arrays rest_position and source_vertex (the original
@@ -22,7 +22,7 @@ namespace kerf::cli {
 absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& args);
 
 struct CutOptions {
-  cut::CutMode mode = cut::CutMode::kDeferred;
+  cut::CutMode mode = cut::CutMode::kProgressive;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // progressive: see the cutter
   // Non-empty: the cut mesh as VTU (current positions as points; the arrays rest_position,
   // source_vertex and source_tet).

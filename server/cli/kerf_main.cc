@@ -22,7 +22,7 @@ constexpr absl::string_view kUsage =
     "       kerf sim run [SCENE] [--steps N] [--vtu-out DIR]\n"
     "       kerf sim list\n"
     "       kerf static DECK.inp [--json]\n"
-    "       kerf cut MESH --path PATH.json --out OUT.vtu [--deferred|--progressive]\n"
+    "       kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred]\n"
     "                [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]\n"
     "       kerf experiment lattice-cut|progressive-cases|live-cut [--json]\n"
     "       kerf replay JOURNAL [--speed X] [--listen HOST:PORT] [--export-at T,...|end]\n"

@@ -24,7 +24,7 @@
 // pattern keeps its last temporary subdivision (frozen), so the crack it made stays. Withdrawing
 // the blade makes the temporary face points permanent.
 //
-// Deferred (the default until progressive sessions keep real time; see the README): the tets
+// Deferred (for comparison, and for sessions that must cost least; see the README): the tets
 // the blade has crossed are subdivided once it has left them. The tets joined through cut edges and
 // crossed faces form a group split in one step, when the blade has left all of them (or at Finish).
 // A group member whose pattern is none of the five cases has its hits dropped, and the group is
@@ -114,7 +114,7 @@ class Cutter {
   // `min_temporary_height`: see kDefaultMinTemporaryHeight (0 turns the guard off).
   static absl::StatusOr<Cutter> Create(mesh::TetMesh* mesh, double cell_size,
                                        const BladeLimits& limits = {},
-                                       CutMode mode = CutMode::kDeferred,
+                                       CutMode mode = CutMode::kProgressive,
                                        double min_temporary_height = kDefaultMinTemporaryHeight);
 
   // Applies one pose. INVALID_ARGUMENT (and nothing changed) for a bad pose. The first pose

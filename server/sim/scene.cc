@@ -138,7 +138,7 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
     }
   }
   if (scene.cut_mode == kerf::v1::Cutting::MODE_UNSPECIFIED) {
-    scene.cut_mode = kerf::v1::Cutting::DEFERRED;
+    scene.cut_mode = kerf::v1::Cutting::PROGRESSIVE;
   }
   if (scene.method == kerf::v1::Integration::METHOD_UNSPECIFIED) {
     // Explicit integration blows up under a live progressive cut (kerf experiment live-cut).

@@ -21,10 +21,10 @@ struct Scene {
   mesh::TetMesh mesh;
   fem::Material material;
   fem::BoundaryConditions conditions;
-  kerf::v1::Integration::Method method = kerf::v1::Integration::SYMPLECTIC_EULER;
+  kerf::v1::Integration::Method method = kerf::v1::Integration::IMPLICIT_EULER;
   double time_step = 0;   // s; 0 chooses (see kerf.v1.Integration.time_step)
   kerf::v1::Needs needs;  // carried for the service; the simulation itself needs no output
-  kerf::v1::Cutting::Mode cut_mode = kerf::v1::Cutting::DEFERRED;
+  kerf::v1::Cutting::Mode cut_mode = kerf::v1::Cutting::PROGRESSIVE;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // see kerf.v1.Cutting
 };
 

@@ -103,8 +103,8 @@ struct ObserverTally {
 // One cutter streams a pose every millisecond for 2 s (a blade 4.5 cm long crossing the
 // lattice at 25 mm/s) and takes a frame after every physics tick; `observers` observers take
 // frames at 60 Hz, cycling through SURFACE, VOLUME and FORCES. With `journal` 1 the session
-// journals every pose to a file (in the temporary directory); with `progressive` 1 the scene
-// cuts progressively (and so integrates with backward Euler).
+// journals every pose to a file (in the temporary directory); with `deferred` 1 the scene cuts
+// deferred (and so integrates explicitly) instead of progressively, the default.
 void BM_PoseToFrame(benchmark::State& state) {
   const int observer_count = static_cast<int>(state.range(0));
   RegistryOptions options;
@@ -127,7 +127,7 @@ void BM_PoseToFrame(benchmark::State& state) {
     kerf::v1::CreateSessionRequest create;
     *create.mutable_scene() = LatticeScene();
     if (state.range(2) != 0) {
-      create.mutable_scene()->mutable_cutting()->set_mode(kerf::v1::Cutting::PROGRESSIVE);
+      create.mutable_scene()->mutable_cutting()->set_mode(kerf::v1::Cutting::DEFERRED);
     }
     kerf::v1::CreateSessionResponse created;
     {
@@ -247,7 +247,7 @@ BENCHMARK(BM_PoseToFrame)
     ->Args({16, 0, 0})
     ->Args({1, 0, 1})
     ->Args({16, 0, 1})
-    ->ArgNames({"observers", "journal", "progressive"})
+    ->ArgNames({"observers", "journal", "deferred"})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -82,10 +82,10 @@ TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsCho
   ASSERT_TRUE(journal.ok()) << journal.status();
   ASSERT_GE(journal->records.size(), 1u);
   const kerf::v1::Scene& scene = journal->records[0].start().scene();
-  EXPECT_EQ(scene.cutting().mode(), kerf::v1::Cutting::DEFERRED);
+  EXPECT_EQ(scene.cutting().mode(), kerf::v1::Cutting::PROGRESSIVE);
   ASSERT_TRUE(scene.cutting().has_min_temporary_height());
   EXPECT_EQ(scene.cutting().min_temporary_height(), cut::kDefaultMinTemporaryHeight);
-  EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::SYMPLECTIC_EULER);
+  EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::IMPLICIT_EULER);
 }
 
 TEST_F(SessionRegistryJournalTest, ASessionClosedByItsClientIsKeptButNotRestored) {

@@ -398,7 +398,7 @@ TEST(SimulatorService, ListsScenesAndSessionsAndMakesSessionsByName) {
     EXPECT_FALSE(scene.description().empty()) << scene.name();
   }
   EXPECT_EQ(names, (std::set<std::string>{"bar-cantilever", "lattice-tension",
-                                          "lattice-tension-progressive"}));
+                                          "lattice-tension-deferred"}));
   kerf::v1::CreateSessionRequest request;
   request.set_scene_name("bar-cantilever");
   kerf::v1::CreateSessionResponse created;

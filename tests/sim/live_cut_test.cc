@@ -20,7 +20,7 @@ TEST(LiveCut, WithALowHeightGuardEveryTetTheBladeCrossesIsCut) {
   const absl::StatusOr<std::vector<cut::BladePose>> path =
       cut::ParseBladePathJson(*text, file, cut::BladeLimits{});
   ASSERT_TRUE(path.ok()) << path.status();
-  absl::StatusOr<Scene> scene = LoadScene("lattice-tension-progressive");
+  absl::StatusOr<Scene> scene = LoadScene("lattice-tension");
   ASSERT_TRUE(scene.ok()) << scene.status();
   ASSERT_EQ(scene->method, kerf::v1::Integration::IMPLICIT_EULER);
   scene->min_temporary_height = 0.005;

@@ -13,9 +13,9 @@ namespace {
 using kerf::testing::StatusMessage;
 
 TEST(LoadScene, EmbeddedScenesBuild) {
-  EXPECT_EQ(EmbeddedSceneNames(),
-            (std::vector<std::string>{"lattice-tension", "lattice-tension-progressive",
-                                      "bar-cantilever"}));
+  EXPECT_EQ(
+      EmbeddedSceneNames(),
+      (std::vector<std::string>{"lattice-tension", "lattice-tension-deferred", "bar-cantilever"}));
   absl::StatusOr<Scene> tension = LoadScene("lattice-tension");
   ASSERT_TRUE(tension.ok()) << tension.status();
   EXPECT_EQ(tension->mesh.tet_count(), 576u);
@@ -24,12 +24,14 @@ TEST(LoadScene, EmbeddedScenesBuild) {
   double pulled = 0;
   for (const auto& p : tension->conditions.prescribed) pulled = std::max(pulled, p.value);
   EXPECT_DOUBLE_EQ(pulled, 0.006);
-  absl::StatusOr<Scene> progressive = LoadScene("lattice-tension-progressive");
-  ASSERT_TRUE(progressive.ok()) << progressive.status();
-  EXPECT_EQ(progressive->mesh.tet_count(), 576u);
-  EXPECT_EQ(progressive->conditions.prescribed.size(), tension->conditions.prescribed.size());
-  EXPECT_EQ(progressive->cut_mode, kerf::v1::Cutting::PROGRESSIVE);
-  EXPECT_EQ(progressive->method, kerf::v1::Integration::IMPLICIT_EULER);
+  EXPECT_EQ(tension->cut_mode, kerf::v1::Cutting::PROGRESSIVE);  // the default
+  EXPECT_EQ(tension->method, kerf::v1::Integration::IMPLICIT_EULER);
+  absl::StatusOr<Scene> deferred = LoadScene("lattice-tension-deferred");
+  ASSERT_TRUE(deferred.ok()) << deferred.status();
+  EXPECT_EQ(deferred->mesh.tet_count(), 576u);
+  EXPECT_EQ(deferred->conditions.prescribed.size(), tension->conditions.prescribed.size());
+  EXPECT_EQ(deferred->cut_mode, kerf::v1::Cutting::DEFERRED);
+  EXPECT_EQ(deferred->method, kerf::v1::Integration::SYMPLECTIC_EULER);
   absl::StatusOr<Scene> cantilever = LoadScene("bar-cantilever");
   ASSERT_TRUE(cantilever.ok()) << cantilever.status();
   EXPECT_EQ(cantilever->conditions.gravity, Eigen::Vector3d(0, 0, -1));
@@ -38,7 +40,7 @@ TEST(LoadScene, EmbeddedScenesBuild) {
 TEST(LoadScene, UnknownNamesAndFilesAreClearErrors) {
   EXPECT_EQ(StatusMessage(LoadScene("liver-cut")),
             "no embedded scene 'liver-cut' (there are: lattice-tension, "
-            "lattice-tension-progressive, bar-cantilever)");
+            "lattice-tension-deferred, bar-cantilever)");
 }
 
 std::string Tension() { return *EmbeddedSceneText("lattice-tension"); }
@@ -101,13 +103,14 @@ TEST(BuildScene, AProgressiveSceneIntegratesImplicitlyUnlessItSaysOtherwise) {
   const auto method_of = [](const std::string& extra) {
     return BuildScene(*ParseSceneText(Tension() + extra, "s.textproto"), ".")->method;
   };
-  EXPECT_EQ(method_of(""), kerf::v1::Integration::SYMPLECTIC_EULER);
+  EXPECT_EQ(method_of(""), kerf::v1::Integration::IMPLICIT_EULER);
   EXPECT_EQ(BuildScene(*ParseSceneText(Tension(), "s.textproto"), ".")->cut_mode,
-            kerf::v1::Cutting::DEFERRED);  // a scene that names no mode
+            kerf::v1::Cutting::PROGRESSIVE);  // a scene that names no mode
   EXPECT_EQ(method_of("cutting { mode: PROGRESSIVE }\n"), kerf::v1::Integration::IMPLICIT_EULER);
-  EXPECT_EQ(method_of("cutting { mode: PROGRESSIVE }\nintegration { method: SYMPLECTIC_EULER }\n"),
+  EXPECT_EQ(method_of("integration { method: SYMPLECTIC_EULER }\n"),
             kerf::v1::Integration::SYMPLECTIC_EULER);
-  EXPECT_EQ(method_of("integration { method: IMPLICIT_EULER }\n"),
+  EXPECT_EQ(method_of("cutting { mode: DEFERRED }\n"), kerf::v1::Integration::SYMPLECTIC_EULER);
+  EXPECT_EQ(method_of("cutting { mode: DEFERRED }\nintegration { method: IMPLICIT_EULER }\n"),
             kerf::v1::Integration::IMPLICIT_EULER);
 }
 
