@@ -104,7 +104,8 @@ struct ObserverTally {
 // lattice at 25 mm/s) and takes a frame after every physics tick; `observers` observers take
 // frames at 60 Hz, cycling through SURFACE, VOLUME and FORCES. With `journal` 1 the session
 // journals every pose to a file (in the temporary directory); with `deferred` 1 the scene cuts
-// deferred (and so integrates explicitly) instead of progressively, the default.
+// deferred (and so integrates explicitly) instead of progressively, the default; with
+// `guard_off` 1 it cuts progressively with no height guard (cutting.min_temporary_height 0).
 void BM_PoseToFrame(benchmark::State& state) {
   const int observer_count = static_cast<int>(state.range(0));
   RegistryOptions options;
@@ -129,6 +130,7 @@ void BM_PoseToFrame(benchmark::State& state) {
     if (state.range(2) != 0) {
       create.mutable_scene()->mutable_cutting()->set_mode(kerf::v1::Cutting::DEFERRED);
     }
+    if (state.range(3) != 0) create.mutable_scene()->mutable_cutting()->set_min_temporary_height(0);
     kerf::v1::CreateSessionResponse created;
     {
       grpc::ClientContext context;
@@ -241,13 +243,14 @@ void BM_PoseToFrame(benchmark::State& state) {
 
 BENCHMARK(BM_EchoRoundTrip)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_PoseToFrame)
-    ->Args({1, 0, 0})
-    ->Args({1, 1, 0})
-    ->Args({4, 0, 0})
-    ->Args({16, 0, 0})
-    ->Args({1, 0, 1})
-    ->Args({16, 0, 1})
-    ->ArgNames({"observers", "journal", "deferred"})
+    ->Args({1, 0, 0, 0})
+    ->Args({1, 1, 0, 0})
+    ->Args({4, 0, 0, 0})
+    ->Args({16, 0, 0, 0})
+    ->Args({1, 0, 1, 0})
+    ->Args({16, 0, 1, 0})
+    ->Args({1, 0, 0, 1})
+    ->ArgNames({"observers", "journal", "deferred", "guard_off"})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

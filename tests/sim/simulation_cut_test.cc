@@ -9,23 +9,16 @@
 #include "mesh/mesh_validation.h"
 #include "sim/scene.h"
 #include "sim/simulation.h"
+#include "support/held_bar_scene.h"
 
 namespace kerf::sim {
 namespace {
 
-// A 6 x 2 x 2 cm bar of soft tissue (100 kPa: it sags about 5 mm) held at x = 0, under
-// gravity, lightly damped.
-constexpr char kHeldBar[] = R"(
-name: "held-bar"
-mesh { lattice { cells_x: 6 cells_y: 2 cells_z: 2 size { x: 0.06 y: 0.02 z: 0.02 } } }
-material { youngs_modulus: 100000 poisson_ratio: 0.45 density: 1000 mass_damping: 5 }
-displacements { vertices { half_space { point { x: 0 } normal { x: -1 } } } }
-gravity { z: -9.81 }
-)";
+using kerf::testing::kHeldBarScene;
 
 TEST(Simulation, APieceCutFreeFallsAndTheModelFollowsTheCut) {
   std::unique_ptr<Simulation> s =
-      *Simulation::Create(*BuildScene(*ParseSceneText(kHeldBar, "held-bar"), "."));
+      *Simulation::Create(*BuildScene(*ParseSceneText(kHeldBarScene, "held-bar"), "."));
   double mass_before = 0;
   for (const double m : s->model().masses()) mass_before += m;
   for (int step = 0; step < 100; ++step) s->Step();
@@ -169,7 +162,7 @@ TEST(Simulation, ProgressiveCuttingFollowsMovingTissueIncrementally) {
 
 TEST(Simulation, ABadBladePoseChangesNothing) {
   std::unique_ptr<Simulation> s =
-      *Simulation::Create(*BuildScene(*ParseSceneText(kHeldBar, "held-bar"), "."));
+      *Simulation::Create(*BuildScene(*ParseSceneText(kHeldBarScene, "held-bar"), "."));
   ASSERT_TRUE(s->ApplyBladePose({0, {0.0337, -0.005, -0.03}, {0.0337, -0.005, 0.03}}).ok());
   const mesh::ChangeMark mark = s->mesh().change_log().Mark();
   EXPECT_EQ(s->ApplyBladePose({0, {0.0337, 0.005, -0.03}, {0.0337, 0.005, 0.03}}).code(),

@@ -11,18 +11,12 @@
 
 #include "sim/scene.h"
 #include "sim/simulation.h"
+#include "support/held_bar_scene.h"
 
 namespace kerf::sim {
 namespace {
 
-// A 6 x 2 x 2 cm bar held at x = 0, sagging under gravity.
-constexpr char kHeldBar[] = R"(
-name: "held-bar"
-mesh { lattice { cells_x: 6 cells_y: 2 cells_z: 2 size { x: 0.06 y: 0.02 z: 0.02 } } }
-material { youngs_modulus: 100000 poisson_ratio: 0.45 density: 1000 mass_damping: 5 }
-displacements { vertices { half_space { point { x: 0 } normal { x: -1 } } } }
-gravity { z: -9.81 }
-)";
+using kerf::testing::kHeldBarScene;
 
 // A vertical blade through the bar's whole depth at x = 33.7 mm, y in the bar.
 cut::BladePose VerticalBlade(double time, double y) {
@@ -30,10 +24,10 @@ cut::BladePose VerticalBlade(double time, double y) {
   return {time, tip, tip + Eigen::Vector3d(0, 0, 0.06)};
 }
 
-class ToolReactionTest : public testing::Test {
+class ToolReactionTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    simulation_ = *Simulation::Create(*BuildScene(*ParseSceneText(kHeldBar, "held-bar"), "."));
+    simulation_ = *Simulation::Create(*BuildScene(*ParseSceneText(kHeldBarScene, "held-bar"), "."));
     for (int step = 0; step < 100; ++step) simulation_->Step();  // sagging: u is not zero
     ASSERT_TRUE(simulation_->ApplyBladePose(VerticalBlade(0, 0.004)).ok());
   }
