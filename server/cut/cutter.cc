@@ -736,19 +736,24 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       const bool tip_inside = inside && tip_weights.minCoeff() >= kTipMargin;
       using Apex = SplitInputs::Apex;
       SplitInputs inputs{cuts, used, tip_inside && !cuts.empty() ? Apex::kTip : Apex::kNone};
+      // Whether a temporary piece of t would be thinner than the guard allows.
+      const auto too_thin = [&](const std::vector<mesh::TetVertices>& pieces) {
+        const double least = LeastTemporaryHeight(corners, cuts, used);
+        return std::any_of(pieces.begin(), pieces.end(), [&](const mesh::TetVertices& piece) {
+          return SmallestHeight(*mesh_, piece) < least;
+        });
+      };
       if (const OpenTet& open = open_.at(t);
           inside && !open.pieces.empty() && open.inputs == inputs) {
         // Only the blade moved: the same pieces, their points moved, unless one would now be
         // inverted or too thin (then they are chosen anew).
         if (inputs.apex == Apex::kTip) temporary_point(InsidePlace(t), corners, tip_weights);
-        const double least = LeastTemporaryHeight(corners, cuts, used);
         Plan moved{.tet = t, .temporary = true, .table_case = table_case, .moved = true};
         for (const TetId piece : open.pieces) moved.split.tets.push_back(mesh_->tet(piece));
-        if (std::all_of(moved.split.tets.begin(), moved.split.tets.end(),
-                        [&](const mesh::TetVertices& piece) {
-                          return SignedVolume(*mesh_, piece) > 0 &&
-                                 SmallestHeight(*mesh_, piece) >= least;
-                        })) {
+        if (std::all_of(
+                moved.split.tets.begin(), moved.split.tets.end(),
+                [&](const mesh::TetVertices& piece) { return SignedVolume(*mesh_, piece) > 0; }) &&
+            !too_thin(moved.split.tets)) {
           plans.push_back(std::move(moved));
           continue;
         }
@@ -787,10 +792,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         continue;
       }
       if (inside) {
-        const double least = LeastTemporaryHeight(corners, cuts, used);
-        if (std::any_of(split.tets.begin(), split.tets.end(), [&](const mesh::TetVertices& piece) {
-              return SmallestHeight(*mesh_, piece) < least;
-            })) {
+        if (too_thin(split.tets)) {
           // Kept as it is, its temporary points where the blade was.
           ++statistics_.thin_temporary_plans;
           Plan keep{.tet = t, .temporary = true, .table_case = table_case, .keep = true};
