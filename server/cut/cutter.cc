@@ -11,6 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "geometry/moving_crossing.h"
 #include "geometry/segment_box.h"
+#include "geometry/segment_distance.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
 #include "mesh/face_tiling.h"
@@ -275,14 +276,22 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
       if (edge_hits_.contains(key) || !tested_edges.insert(key).second) continue;
       const VertexId lo = Index(v[i]) < Index(v[j]) ? v[i] : v[j];
       const VertexId hi = lo == v[i] ? v[j] : v[i];
-      const auto crossing = geometry::FirstEdgeCrossing(motion(lo), motion(hi), tip, heel);
-      if (!crossing) continue;
-      if (crossing->fraction < kDegenerate || crossing->fraction > 1 - kDegenerate) {
+      std::optional<double> fraction;
+      if (const auto crossing = geometry::FirstEdgeCrossing(motion(lo), motion(hi), tip, heel)) {
+        fraction = crossing->fraction;
+      } else if (const geometry::ClosestPoints c = geometry::ClosestPointsOfSegments(
+                     to.tip, to.heel, mesh_->current_position(lo), mesh_->current_position(hi));
+                 c.distance <
+                 kDegenerate * (mesh_->current_position(hi) - mesh_->current_position(lo)).norm()) {
+        fraction = c.t;  // the blade stops on the edge (short of it by rounding only)
+      }
+      if (!fraction) continue;
+      if (*fraction < kDegenerate || *fraction > 1 - kDegenerate) {
         ++statistics_.degenerate_hits;
       } else if (const std::array<VertexId, 2> ends = {lo, hi}; !Realisable(ends)) {
         ++statistics_.unrealisable_hits;
       } else {
-        edge_hits_[key] = {crossing->fraction};
+        edge_hits_[key] = {*fraction};
         new_edges.push_back(key);
       }
     }
@@ -447,7 +456,7 @@ std::vector<MadeVertex> Cutter::TakeMadeVertices() {
 }
 
 std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
-                                        std::vector<EdgeKey>* given) {
+                                        std::vector<EdgeKey>* given, const BladePose* pose) {
   std::vector<EdgeCut> cuts;
   for (const auto& [i, j] : mesh::kTetEdges) {
     const auto it = edge_hits_.find(MakeEdgeKey(corners[i], corners[j]));
@@ -455,6 +464,15 @@ std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
     EdgeHit& hit = it->second;
     const bool i_low = Index(corners[i]) < Index(corners[j]);
     const VertexId lo = i_low ? corners[i] : corners[j], hi = i_low ? corners[j] : corners[i];
+    if (pose != nullptr && hit.near_low == kNoVertex) {
+      const Eigen::Vector3d a = mesh_->current_position(lo), b = mesh_->current_position(hi);
+      const Eigen::Vector3d point = a + hit.fraction * (b - a);
+      if (geometry::DistanceToSegment(point, pose->tip, pose->heel) <
+          kDegenerate * (b - a).norm()) {
+        cuts.push_back({i_low ? i : j, i_low ? j : i, kNoVertex, kNoVertex});
+        continue;
+      }
+    }
     if (hit.near_low == kNoVertex) {
       const Eigen::Vector4d weights(1 - hit.fraction, hit.fraction, 0, 0);
       hit.near_low = MakeVertex({lo, hi, lo, lo}, weights);
@@ -676,7 +694,17 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         inside = inside || geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->tip) ||
                  geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->heel);
       }
-      const std::vector<EdgeCut> cuts = EdgeCutsOf(corners, &edges_given);
+      std::vector<EdgeCut> cuts = EdgeCutsOf(corners, &edges_given, pose);
+      // A closed cut's one vertex is a temporary point on the blade; the tet holds the blade.
+      bool opens = false;  // whether a cut of the tet opens
+      for (EdgeCut& c : cuts) {
+        opens = opens || c.near_a != kNoVertex;
+        if (c.near_a != kNoVertex) continue;
+        const VertexId lo = corners[c.corner_a], hi = corners[c.corner_b];
+        const double f = edge_hits_.at(MakeEdgeKey(lo, hi)).fraction;
+        c.near_a = c.near_b = temporary_point({lo, hi, hi}, {lo, hi, lo, lo}, {1 - f, f, 0, 0});
+        inside = true;
+      }
       // Face points that can open: on a face with a cut edge (a permanent one first).
       std::vector<FacePoint> used;
       Eigen::Vector4d used_sum = Eigen::Vector4d::Zero();  // their corner weights, summed
@@ -781,6 +809,14 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
                               temporary_point(InsidePlace(t), corners, middle, false), rest);
           inputs.apex = Apex::kMiddle;
         }
+      }
+      if (split.tets.empty() && inside && !opens && !cuts.empty()) {
+        // Every cut closed (the blade on the tet's edges): nothing opens here, but the tet
+        // must meet its neighbours' faces at those points; a cone from its middle does.
+        split = SplitAsStar(
+            corners, cuts, used,
+            temporary_point(InsidePlace(t), corners, Eigen::Vector4d::Constant(0.25), false), rest);
+        inputs.apex = Apex::kMiddle;
       }
       if (split.tets.empty()) {
         if (inside) {

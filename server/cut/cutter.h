@@ -255,9 +255,12 @@ class Cutter {
   // tets near it, `near` (every group if `near` is null). O(near + groups).
   void SplitReadyGroups(const BladePose* pose, const std::vector<mesh::TetId>* near);
   void SplitGroup(std::vector<mesh::TetId> group);
-  // The tet's cut edges, their vertices made if needed (and their keys added to `given`).
+  // The tet's cut edges, their vertices made if needed (and their keys added to `given`). A
+  // cut whose point the blade at `pose` passes through is closed: the crack's front runs
+  // through it, so it does not open yet; it comes with no vertices (kNoVertex in both).
   std::vector<EdgeCut> EdgeCutsOf(const mesh::TetVertices& corners,
-                                  std::vector<EdgeKey>* given = nullptr);
+                                  std::vector<EdgeKey>* given = nullptr,
+                                  const BladePose* pose = nullptr);
   std::vector<FacePoint> FacePointsOf(const mesh::TetVertices& corners) const;
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& from,
                             const Eigen::Vector4d& weights);

@@ -425,6 +425,12 @@ TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut
                {Near(cuts, cx, c), corners[cx], corners[cy], Near(cuts, cy, c)}, key_rule)) {
         boundary.push_back(t);
       }
+    } else if (face_cuts.size() == 1 && face_cuts[0]->near_a == face_cuts[0]->near_b) {
+      // A closed cut (the crack's front on the edge): two triangles from the third corner.
+      const EdgeCut& x = *face_cuts[0];
+      const int third = face[0] + face[1] + face[2] - x.corner_a - x.corner_b;
+      boundary.push_back({corners[x.corner_a], x.near_a, corners[third]});
+      boundary.push_back({x.near_a, corners[x.corner_b], corners[third]});
     } else {
       return TetSplit{};
     }

@@ -21,7 +21,8 @@
 namespace kerf::cut {
 
 // One cut edge of the tet being split: corners (local indices 0..3) and the new vertex on
-// each corner's side.
+// each corner's side. One vertex for both (near_a == near_b) is a closed cut: the crack's
+// front passes through the edge there (progressive cutting, the blade on the edge now).
 struct EdgeCut {
   int corner_a;
   int corner_b;
@@ -73,7 +74,8 @@ TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<Edg
 // apex over the tet's faces, each face triangulated by the rule every splitter here follows,
 // so a neighbour split by any of them conforms. A face with a face point fans from it, leaving
 // a slit to each cut edge of the face; a face with two cut edges and no point is a corner
-// triangle and a quadrilateral split by the key rule; a face with neither is whole. The crack
+// triangle and a quadrilateral split by the key rule; a face with one closed cut is two
+// triangles from its third corner; a face with neither is whole. The crack
 // then opens from the apex to the faces (its faces are the cone's faces through the slits).
 // An empty result (kNone) when a face has another pattern or a tet would be flat or inverted.
 TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,

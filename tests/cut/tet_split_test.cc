@@ -390,5 +390,38 @@ TEST(SplitCompletelyCutTet, IncompleteOrUnknownPatternsAreNotSplit) {
                   .tets.empty());
 }
 
+// Closed cuts (one vertex for both sides: the crack's front on the edge) with nothing opening:
+// the cone from the middle fills the tet, each face with a closed cut in two triangles from
+// its third corner (two closed cuts: a corner triangle and a quadrilateral), so it meets the
+// faces of the tets beside it. An open cut on a face with no point is still refused.
+TEST(SplitAsStar, ClosedCutsAloneMakeAConeThatFillsTheTet) {
+  const std::map<int, Vector3d> at = {{0, {0, 0, 0}},         {1, {1, 0, 0}},   {2, {0, 1, 0}},
+                                      {3, {0, 0, 1}},         {4, {0.3, 0, 0}}, {5, {0, 0.6, 0}},
+                                      {6, {0.25, 0.25, 0.25}}};
+  const auto rest = [&](VertexId v) { return at.at(static_cast<int>(mesh::Index(v))); };
+  const mesh::TetVertices corners = {VertexId{0}, VertexId{1}, VertexId{2}, VertexId{3}};
+  const auto volume = [&](const mesh::TetVertices& t) {
+    return (rest(t[1]) - rest(t[0])).cross(rest(t[2]) - rest(t[0])).dot(rest(t[3]) - rest(t[0])) /
+           6;
+  };
+  const double whole = std::abs(volume(corners));
+  const EdgeCut closed_01 = {0, 1, VertexId{4}, VertexId{4}};
+  const EdgeCut closed_02 = {0, 2, VertexId{5}, VertexId{5}};
+  for (const auto& [cuts, count] : std::vector<std::pair<std::vector<EdgeCut>, std::size_t>>{
+           {{closed_01}, 6}, {{closed_01, closed_02}, 8}}) {
+    const TetSplit split = SplitAsStar(corners, cuts, {}, VertexId{6}, rest);
+    ASSERT_EQ(split.tets.size(), count);
+    double total = 0;
+    for (const mesh::TetVertices& t : split.tets) {
+      EXPECT_GT(std::abs(volume(t)), 1e-3 * whole);
+      total += std::abs(volume(t));
+      EXPECT_FALSE(mesh::TetHasVertex(t, VertexId{0}) && mesh::TetHasVertex(t, VertexId{1}));
+    }
+    EXPECT_NEAR(total, whole, 1e-12);
+  }
+  const EdgeCut open_01 = {0, 1, VertexId{4}, VertexId{7}};
+  EXPECT_TRUE(SplitAsStar(corners, {open_01}, {}, VertexId{6}, rest).tets.empty());
+}
+
 }  // namespace
 }  // namespace kerf::cut
