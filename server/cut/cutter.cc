@@ -81,12 +81,6 @@ mesh::TetMesh::TetList LiveTetsAround(const mesh::TetMesh& mesh,
 // from it would make slivers.
 constexpr double kTipMargin = 1e-3;
 
-// A temporary tet may be as thin as this share of the thinnest fraction the hits force (an
-// edge cut a fraction f from a corner makes pieces about f thin, final or temporary, so
-// holding the pose for them would only delay the opening), and of a permanent face point's
-// smallest coordinate.
-constexpr double kForcedThinShare = 0.25;
-
 // The tet's volume at rest, positive when its corners are in the mesh's order.
 double SignedVolume(const mesh::TetMesh& mesh, const mesh::TetVertices& t) {
   return geometry::SignedVolume(mesh.rest_position(t[0]), mesh.rest_position(t[1]),
@@ -167,6 +161,15 @@ void Cutter::Finish() {
   }
   previous_.reset();
   positions_at_previous_.clear();
+}
+
+double Cutter::StiffnessScale(TetId t) const {
+  const auto it = owner_.find(t);
+  if (it == owner_.end() || !mesh_->IsAlive(t)) return 1;
+  const double guard =
+      min_temporary_height_ * SmallestHeight(*mesh_, mesh_->tet_even_if_removed(it->second));
+  const double height = SmallestHeight(*mesh_, mesh_->tet(t));
+  return height < guard ? height / guard : 1;
 }
 
 TetId Cutter::OwnerOf(TetId t) const {
@@ -580,22 +583,6 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
   }
 }
 
-double Cutter::LeastTemporaryHeight(const mesh::TetVertices& corners,
-                                    const std::vector<EdgeCut>& cuts,
-                                    const std::vector<FacePoint>& face_points) const {
-  double forced = 1;  // the thinnest fraction the permanent hits impose
-  for (const EdgeCut& c : cuts) {
-    const double f = edge_hits_.at(MakeEdgeKey(corners[c.corner_a], corners[c.corner_b])).fraction;
-    forced = std::min({forced, f, 1 - f});
-  }
-  for (const FacePoint& p : face_points) {
-    const auto hit = face_hits_.find(MakeFaceKey(corners, mesh::kTetFaces[p.face]));
-    if (hit != face_hits_.end()) forced = std::min(forced, hit->second.barycentric.minCoeff());
-  }
-  return std::min(min_temporary_height_, kForcedThinShare * forced) *
-         SmallestHeight(*mesh_, corners);
-}
-
 void Cutter::UpdateOpenTets(const BladePose* pose) {
   const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
   const auto current = [&](VertexId v) { return mesh_->current_position(v); };
@@ -667,7 +654,6 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       });
     };
     std::vector<Plan> plans;
-    std::vector<std::pair<FaceKey, TemporaryPoint>> kept_points;  // of plans that keep
     std::vector<TetId> failed_final;
     bool failed_temporary = false;
     // Where the blade edge crosses each face, found once per face so both its tets agree.
@@ -764,24 +750,16 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       const bool tip_inside = inside && tip_weights.minCoeff() >= kTipMargin;
       using Apex = SplitInputs::Apex;
       SplitInputs inputs{cuts, used, tip_inside && !cuts.empty() ? Apex::kTip : Apex::kNone};
-      // Whether a temporary piece of t would be thinner than the guard allows.
-      const auto too_thin = [&](const std::vector<mesh::TetVertices>& pieces) {
-        const double least = LeastTemporaryHeight(corners, cuts, used);
-        return std::any_of(pieces.begin(), pieces.end(), [&](const mesh::TetVertices& piece) {
-          return SmallestHeight(*mesh_, piece) < least;
-        });
-      };
       if (const OpenTet& open = open_.at(t);
           inside && !open.pieces.empty() && open.inputs == inputs) {
         // Only the blade moved: the same pieces, their points moved, unless one would now be
-        // inverted or too thin (then they are chosen anew).
+        // inverted (then they are chosen anew).
         if (inputs.apex == Apex::kTip) temporary_point(InsidePlace(t), corners, tip_weights);
         Plan moved{.tet = t, .temporary = true, .table_case = table_case, .moved = true};
         for (const TetId piece : open.pieces) moved.split.tets.push_back(mesh_->tet(piece));
         if (std::all_of(
                 moved.split.tets.begin(), moved.split.tets.end(),
-                [&](const mesh::TetVertices& piece) { return SignedVolume(*mesh_, piece) > 0; }) &&
-            !too_thin(moved.split.tets)) {
+                [&](const mesh::TetVertices& piece) { return SignedVolume(*mesh_, piece) > 0; })) {
           plans.push_back(std::move(moved));
           continue;
         }
@@ -827,23 +805,6 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         }
         continue;
       }
-      if (inside) {
-        if (too_thin(split.tets)) {
-          // Kept as it is, its temporary points where the blade was.
-          ++statistics_.thin_temporary_plans;
-          Plan keep{.tet = t, .temporary = true, .table_case = table_case, .keep = true};
-          for (const TetId piece : open_.at(t).pieces) keep.split.tets.push_back(mesh_->tet(piece));
-          for (const auto& entry : temporary_points_) {
-            const VertexId v = entry.second.vertex;
-            const bool uses = std::any_of(
-                keep.split.tets.begin(), keep.split.tets.end(),
-                [&](const mesh::TetVertices& piece) { return mesh::TetHasVertex(piece, v); });
-            if (uses) kept_points.push_back({entry.first, {v, entry.second.weights, false}});
-          }
-          plans.push_back(std::move(keep));
-          continue;
-        }
-      }
       plans.push_back({.tet = t,
                        .temporary = inside,
                        .table_case = table_case,
@@ -851,16 +812,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
                        .inputs = std::move(inputs)});
     }
 
-    for (const auto& [place, point] : kept_points) {
-      // A kept point where this pose made another: the two sides of its face would differ.
-      const auto [it, fresh] = points.try_emplace(place, point);
-      if (!fresh && (it->second.vertex != point.vertex || it->second.weights != point.weights)) {
-        failed_temporary = true;
-      }
-    }
     // Plans that change no tet keep the mesh as conforming as it is.
     const bool tets_change = std::any_of(plans.begin(), plans.end(), [&](const Plan& plan) {
-      return !plan.keep && !plan.moved && !(plan.temporary && plan.split.tets.empty());
+      return !plan.moved && !(plan.temporary && plan.split.tets.empty());
     });
     if (!failed_temporary && failed_final.empty() && tets_change) {
       for (const std::size_t k : NonConformingPlans(plans)) {
@@ -894,6 +848,17 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
               return mesh::TetHasVertex(mesh_->tet(piece), v);
             });
           });
+          // Its pieces stay for good: a soft one is made anew, so the model gives it stiffness.
+          for (TetId& piece : open.pieces) {
+            if (!IsSoft(piece)) continue;
+            const mesh::TetVertices piece_corners = mesh_->tet(piece);
+            owner_.erase(piece);
+            (void)mesh_->RemoveTet(piece);
+            const absl::StatusOr<TetId> added = mesh_->AddTet(piece_corners);
+            assert(added.ok());
+            source_tet_[*added] = SourceTet(t);
+            piece = *added;
+          }
           ++statistics_.frozen_tets;
         } else {
           // Never subdivided: its hits were never used; drop them.
@@ -929,7 +894,6 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     };
     std::vector<mesh::TetVertices> closed;
     for (Plan& plan : plans) {
-      if (plan.keep) continue;
       if (plan.moved) {
         ++statistics_.moved;  // only its points moved, in place: its pieces stay
         continue;
@@ -978,6 +942,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       }
       if (plan.temporary) {
         ++statistics_.rebuilt;
+        if (std::any_of(kept.begin(), kept.end(), [&](TetId piece) { return IsSoft(piece); })) {
+          ++statistics_.thin_temporary_plans;
+        }
         open.pieces = std::move(kept);
         open.signature = std::move(signature);
         open.inputs = std::move(plan.inputs);

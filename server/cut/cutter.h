@@ -63,9 +63,9 @@ struct MadeVertex {
 enum class CutMode { kProgressive, kDeferred };
 
 // Progressive: a temporary tet lower than this fraction of the smallest height of the tet it
-// stands in for is not made (the tet keeps its previous subdivision, and the pose is held if a
-// neighbour then differs), unless the hits force thinner pieces anyway (an edge cut near a
-// corner). Thin temporaries cost the implicit solve iterations (README: the lag it buys).
+// stands in for is softened (StiffnessScale): the elastic model makes it no stiffer than a
+// piece of this height, so the slivers a blade near an edge makes do not slow the implicit
+// solve, while the opening still follows the blade (README: what it costs and buys).
 inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 
 // The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
@@ -92,8 +92,7 @@ struct CutStatistics {
   std::size_t frozen_tets = 0;  // tets left in their last temporary subdivision
   // Subdivisions not applied because a face of theirs would differ from the other side's.
   std::size_t nonconforming_plans = 0;
-  // Temporary subdivisions not made because a tet of theirs would be too thin (the tet kept
-  // its previous one).
+  // Temporary subdivisions made with a soft piece (lower than the guard: see IsSoft).
   std::size_t thin_temporary_plans = 0;
   // Temporary subdivisions no case covers (the blade through an edge or in a face's plane).
   std::size_t uncovered_temporary_plans = 0;
@@ -111,7 +110,7 @@ class Cutter {
  public:
   // The mesh must outlive the cutter and change only through it while it cuts. `cell_size`
   // (m) sets the grid; a mean edge length is a good choice. INVALID_ARGUMENT for a bad size.
-  // `min_temporary_height`: see kDefaultMinTemporaryHeight (0 turns the guard off).
+  // `min_temporary_height`: see kDefaultMinTemporaryHeight (0: no piece is soft).
   static absl::StatusOr<Cutter> Create(mesh::TetMesh* mesh, double cell_size,
                                        const BladeLimits& limits = {},
                                        CutMode mode = CutMode::kProgressive,
@@ -151,6 +150,12 @@ class Cutter {
 
   // Whether the cutter made `t` (it replaced a cut tet).
   bool MadeByCut(mesh::TetId t) const { return source_tet_.contains(t); }
+  // The share of its stiffness the elastic model gives `t`: for a temporary piece lower than
+  // the guard (see kDefaultMinTemporaryHeight) of the tet it stands in for, its height over the
+  // guard's, so that it is no stiffer than a piece of the guard's height; 1 for every other
+  // tet. O(1).
+  double StiffnessScale(mesh::TetId t) const;
+  bool IsSoft(mesh::TetId t) const { return StiffnessScale(t) < 1; }
 
  private:
   struct EdgeHit {
@@ -220,11 +225,6 @@ class Cutter {
   bool Realisable(std::span<const mesh::VertexId> vertices) const;
   // The tets (as OwnerOf) with both vertices, or all three.
   std::vector<mesh::TetId> TetsWith(std::span<const mesh::VertexId> vertices) const;
-  // The height (m, at rest) under which a temporary piece of the tet is too thin to make: a
-  // share of its smallest height, less where its cut edges and permanent face points force
-  // thin pieces anyway.
-  double LeastTemporaryHeight(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
-                              const std::vector<FacePoint>& face_points) const;
   // Progressive: subdivides every open tet for the blade at `pose` (null: withdrawn).
   void UpdateOpenTets(const BladePose* pose);
   // What an open tet becomes in this pose: `split.tets` empty means it stays as it is.
@@ -233,7 +233,6 @@ class Cutter {
     bool temporary;
     int table_case;
     TetSplit split = {};
-    bool keep = false;        // temporary, kept as it is: `split.tets` are its pieces now
     bool moved = false;       // temporary, made from the same inputs: `split.tets` are its pieces
     SplitInputs inputs = {};  // temporary: what `split` was made from
   };

@@ -40,13 +40,15 @@ TensorMassModel::TensorMassModel(const mesh::TetMesh& mesh, const Material& mate
       material_(material),
       lame_(CalcLameParameters(material.youngs_modulus, material.poisson_ratio)) {}
 
-absl::StatusOr<TensorMassModel> TensorMassModel::Create(const mesh::TetMesh& mesh,
-                                                        const Material& material) {
+absl::StatusOr<TensorMassModel> TensorMassModel::Create(
+    const mesh::TetMesh& mesh, const Material& material,
+    std::function<double(mesh::TetId)> stiffness_scale) {
   if (absl::Status s = ValidateMaterial(material); !s.ok()) return s;
   for (const TetId t : mesh.tets()) {
     if (absl::Status s = CheckRestVolumeNonZero(mesh, t); !s.ok()) return s;
   }
   TensorMassModel model(mesh, material);
+  model.stiffness_scale_ = std::move(stiffness_scale);
   model.GrowToMesh();
   std::vector<TetId> tets;
   for (const TetId t : mesh.tets()) {
@@ -130,12 +132,19 @@ void TensorMassModel::UpdateActive(std::span<const TetId> added,
 
 void TensorMassModel::Accumulate(TetId t, double sign) {
   const mesh::TetVertices& v = mesh_->tet_even_if_removed(t);
-  if (added_with_.size() <= Index(t)) added_with_.resize(Index(t) + 1);
-  if (sign > 0) added_with_[Index(t)] = RestCorners(*mesh_, t);
+  if (added_with_.size() <= Index(t)) {
+    added_with_.resize(Index(t) + 1);
+    added_scale_.resize(Index(t) + 1);
+  }
+  if (sign > 0) {
+    added_with_[Index(t)] = RestCorners(*mesh_, t);
+    added_scale_[Index(t)] = stiffness_scale_ ? stiffness_scale_(t) : 1.0;
+  }
   const LinearTetStiffness k = ComputeLinearTetStiffness(added_with_[Index(t)], lame_);
   const double corner_mass = material_.density * k.volume / 4;
+  const double stiffness_sign = sign * added_scale_[Index(t)];
   for (int a = 0; a < 4; ++a) {
-    vertex_tensors_[Index(v[a])] += sign * k.blocks[a][a];
+    vertex_tensors_[Index(v[a])] += stiffness_sign * k.blocks[a][a];
     masses_[Index(v[a])] += sign * corner_mass;
   }
   for (const auto& [i, j] : mesh::kTetEdges) {
@@ -146,7 +155,7 @@ void TensorMassModel::Accumulate(TetId t, double sign) {
     auto [it, inserted] = edge_slot_.try_emplace(key, static_cast<std::uint32_t>(edges_.size()));
     if (inserted) edges_.push_back({v[a], v[b], Eigen::Matrix3d::Zero(), 0});
     EdgeTensor& edge = edges_[it->second];
-    edge.k_ab += sign * k.blocks[a][b];
+    edge.k_ab += stiffness_sign * k.blocks[a][b];
     edge.tets = sign > 0 ? edge.tets + 1 : edge.tets - 1;
     if (edge.tets == 0) {
       // No tet has this edge any more: move the last edge into its slot.

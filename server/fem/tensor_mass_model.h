@@ -13,6 +13,7 @@
 #include <Eigen/SparseCore>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -36,9 +37,10 @@ class TensorMassModel {
  public:
   // Builds from every live tet of `mesh`, which must outlive the model and only change
   // through its own API. INVALID_ARGUMENT for an invalid material or a tet with zero rest
-  // volume.
-  static absl::StatusOr<TensorMassModel> Create(const mesh::TetMesh& mesh,
-                                                const Material& material);
+  // volume. `stiffness_scale`: see SetStiffnessScale.
+  static absl::StatusOr<TensorMassModel> Create(
+      const mesh::TetMesh& mesh, const Material& material,
+      std::function<double(mesh::TetId)> stiffness_scale = nullptr);
 
   // Applies the mesh's tet additions and removals, and vertex moves (the tets around a moved
   // vertex are taken away as they were added and added anew), since the last sync.
@@ -47,6 +49,13 @@ class TensorMassModel {
   absl::Status SyncWithMesh();
   // Whether the mesh has changed since the last sync (or creation).
   bool InSyncWithMesh() const { return synced_ == mesh_->change_log().Mark(); }
+  // A tet carries its stiffness times `scale(t)` (in [0, 1], taken when it is added) and all
+  // its mass: a progressive cut's temporary slivers are softened (cut::Cutter::StiffnessScale).
+  // For tets added (or reshaped) from the next sync on; null: every scale is 1. A tet is taken
+  // away as it was added.
+  void SetStiffnessScale(std::function<double(mesh::TetId)> scale) {
+    stiffness_scale_ = std::move(scale);
+  }
 
   // f = K u: the paper's Eq. 2, f_i = K_ii u_i + sum_j K_ij u_j. u and f are indexed by vertex
   // index and must hold mesh.vertex_index_bound() entries. Only the entries of active vertices
@@ -100,6 +109,8 @@ class TensorMassModel {
   // The rest corners each live tet was added with (by tet index), to take it away exactly
   // after its vertices moved.
   std::vector<std::array<Eigen::Vector3d, 4>> added_with_;
+  std::vector<double> added_scale_;  // the stiffness scale each live tet was added with
+  std::function<double(mesh::TetId)> stiffness_scale_;
 };
 
 }  // namespace kerf::fem

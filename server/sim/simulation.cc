@@ -57,6 +57,9 @@ absl::Status Simulation::ApplyBladePose(const cut::BladePose& pose) {
         scene_.min_temporary_height);
     if (!cutter.ok()) return cutter.status();
     cutter_ = std::make_unique<cut::Cutter>(*std::move(cutter));
+    // Slivers standing in for a tet while the blade is in it are softened.
+    model_->SetStiffnessScale(
+        [cutter = cutter_.get()](mesh::TetId t) { return cutter->StiffnessScale(t); });
   } else if (absl::Status s = cutter_->MeshDeformed(); !s.ok()) {
     return s;
   }

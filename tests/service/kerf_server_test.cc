@@ -82,7 +82,8 @@ grpc::Status SnapshotAt(kerf::v1::Simulator::Stub& stub, const std::string& sess
   request.set_token(token);
   request.set_sequence(sequence);
   grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
+  // A restored session replays its journal first: under the sanitizers, about 20 s.
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
   return stub.GetSnapshot(&context, request, snapshot);
 }
 

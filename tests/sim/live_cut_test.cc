@@ -1,6 +1,6 @@
-// A live progressive cut with a low height guard: many poses are held while the blade skims
-// lattice faces, and a held pose drops nothing (the final subdivisions that failed with it are
-// tried again), so the whole cut opens.
+// A live progressive cut with a low height guard (few slivers softened): poses are held while
+// the blade skims lattice faces, and a held pose drops nothing (the final subdivisions that
+// failed with it are tried again), so the whole cut opens.
 #include "sim/live_cut.h"
 
 #include <gtest/gtest.h>
