@@ -17,6 +17,9 @@
 // arise). When only the blade moved, the temporary points move (the same vertices and tets,
 // recorded as moves for the model to follow); when the case or topology changed, the tet's
 // subdivision is rebuilt; when the blade has left, the final minimal subdivision replaces it.
+// A cut edge whose point the blade passes through now is closed (one vertex: the crack's front
+// runs through the edge) until the blade moves on. Temporary slivers are made and softened
+// (StiffnessScale).
 // Before anything is applied, each subdivision's triangles on its tet's faces are compared with
 // those of the other side (its plan, or the tets there), so the mesh conforms by construction. A
 // pose whose subdivisions cannot all be made (a pattern no case covers, or triangles that would
