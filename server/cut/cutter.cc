@@ -459,7 +459,8 @@ std::vector<MadeVertex> Cutter::TakeMadeVertices() {
 }
 
 std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
-                                        std::vector<EdgeKey>* given, const BladePose* pose) {
+                                        std::vector<EdgeKey>* given, const BladePose* pose,
+                                        const ClosedVertexMaker& closed_vertex) {
   std::vector<EdgeCut> cuts;
   for (const auto& [i, j] : mesh::kTetEdges) {
     const auto it = edge_hits_.find(MakeEdgeKey(corners[i], corners[j]));
@@ -467,17 +468,18 @@ std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
     EdgeHit& hit = it->second;
     const bool i_low = Index(corners[i]) < Index(corners[j]);
     const VertexId lo = i_low ? corners[i] : corners[j], hi = i_low ? corners[j] : corners[i];
+    const Eigen::Vector4d weights(1 - hit.fraction, hit.fraction, 0, 0);
     if (pose != nullptr && hit.near_low == kNoVertex) {
       const Eigen::Vector3d a = mesh_->current_position(lo), b = mesh_->current_position(hi);
       const Eigen::Vector3d point = a + hit.fraction * (b - a);
       if (geometry::DistanceToSegment(point, pose->tip, pose->heel) <
           kDegenerate * (b - a).norm()) {
-        cuts.push_back({i_low ? i : j, i_low ? j : i, kNoVertex, kNoVertex});
+        const VertexId v = closed_vertex({lo, hi, hi}, {lo, hi, lo, lo}, weights);
+        cuts.push_back({i_low ? i : j, i_low ? j : i, v, v});
         continue;
       }
     }
     if (hit.near_low == kNoVertex) {
-      const Eigen::Vector4d weights(1 - hit.fraction, hit.fraction, 0, 0);
       hit.near_low = MakeVertex({lo, hi, lo, lo}, weights);
       hit.near_high = MakeVertex({lo, hi, lo, lo}, weights);
       if (given != nullptr) given->push_back(it->first);
@@ -680,17 +682,12 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         inside = inside || geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->tip) ||
                  geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->heel);
       }
-      std::vector<EdgeCut> cuts = EdgeCutsOf(corners, &edges_given, pose);
       // A closed cut's one vertex is a temporary point on the blade; the tet holds the blade.
-      bool opens = false;  // whether a cut of the tet opens
-      for (EdgeCut& c : cuts) {
-        opens = opens || c.near_a != kNoVertex;
-        if (c.near_a != kNoVertex) continue;
-        const VertexId lo = corners[c.corner_a], hi = corners[c.corner_b];
-        const double f = edge_hits_.at(MakeEdgeKey(lo, hi)).fraction;
-        c.near_a = c.near_b = temporary_point({lo, hi, hi}, {lo, hi, lo, lo}, {1 - f, f, 0, 0});
-        inside = true;
-      }
+      const std::vector<EdgeCut> cuts = EdgeCutsOf(corners, &edges_given, pose, temporary_point);
+      const bool opens = std::any_of(cuts.begin(), cuts.end(),
+                                     [](const EdgeCut& c) { return c.near_a != c.near_b; });
+      inside = inside || std::any_of(cuts.begin(), cuts.end(),
+                                     [](const EdgeCut& c) { return c.near_a == c.near_b; });
       // Face points that can open: on a face with a cut edge (a permanent one first).
       std::vector<FacePoint> used;
       Eigen::Vector4d used_sum = Eigen::Vector4d::Zero();  // their corner weights, summed

@@ -257,12 +257,17 @@ class Cutter {
   // tets near it, `near` (every group if `near` is null). O(near + groups).
   void SplitReadyGroups(const BladePose* pose, const std::vector<mesh::TetId>* near);
   void SplitGroup(std::vector<mesh::TetId> group);
+  // Makes (or finds) a temporary point at a place from weights on up to four vertices.
+  using ClosedVertexMaker = std::function<mesh::VertexId(
+      const FaceKey& place, const std::array<mesh::VertexId, 4>& from, const Eigen::Vector4d&)>;
   // The tet's cut edges, their vertices made if needed (and their keys added to `given`). A
   // cut whose point the blade at `pose` passes through is closed: the crack's front runs
-  // through it, so it does not open yet; it comes with no vertices (kNoVertex in both).
+  // through it, so it does not open yet; its one vertex (near_a == near_b) comes from
+  // `closed_vertex`, needed with `pose`.
   std::vector<EdgeCut> EdgeCutsOf(const mesh::TetVertices& corners,
                                   std::vector<EdgeKey>* given = nullptr,
-                                  const BladePose* pose = nullptr);
+                                  const BladePose* pose = nullptr,
+                                  const ClosedVertexMaker& closed_vertex = {});
   std::vector<FacePoint> FacePointsOf(const mesh::TetVertices& corners) const;
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& from,
                             const Eigen::Vector4d& weights);
