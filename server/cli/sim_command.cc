@@ -103,7 +103,7 @@ absl::StatusOr<std::string> Run(CommandArgs args) {
                           steps, s.state().time, wall, wall > 0 ? steps / wall : 0.0);
   }
   absl::StrAppendFormat(&out, "  max displacement %.6g, mechanical energy %.6g\n", max_displacement,
-                        fem::MechanicalEnergy(s.model(), s.state()));
+                        s.MechanicalEnergy());
   if (!folder.empty()) {
     const std::string pvd = (std::filesystem::path(folder) / (name + ".pvd")).string();
     if (absl::Status st = mesh::WriteTextFile(

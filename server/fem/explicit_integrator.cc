@@ -5,8 +5,9 @@
 
 namespace kerf::fem {
 
-ExplicitIntegrator::ExplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc)
-    : model_(&model) {
+ExplicitIntegrator::ExplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
+                                       ElasticOptions elastic)
+    : model_(&model), forces_(model, elastic) {
   Refresh(bc);
 }
 
@@ -30,13 +31,14 @@ void ExplicitIntegrator::Step(double dt, DynamicState* state) {
   const double alpha = model_->material().mass_damping;
   const double beta = model_->material().stiffness_damping;
   const std::span<const std::uint32_t> active = model_->active_vertices();
+  forces_.Update(state->displacement);
   if (beta == 0) {
-    model_->MultiplyStiffness(state->displacement, elastic_);  // no u + beta v to form
+    forces_.Force(state->displacement, elastic_);  // no u + beta v to form
   } else {
     for (const std::uint32_t i : active) {
       damped_u_[i] = state->displacement[i] + beta * state->velocity[i];
     }
-    model_->MultiplyStiffness(damped_u_, elastic_);
+    forces_.Force(damped_u_, elastic_);
   }
   const double keep = 1 - dt * alpha;
   for (const std::uint32_t i : active) {

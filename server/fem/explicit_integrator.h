@@ -1,11 +1,13 @@
 // Explicit time integration of M a = f_external - K u - C v with lumped mass and Rayleigh
 // damping C = alpha M + beta K, by symplectic (semi-implicit) Euler:
-//   v <- v + dt M^-1 (f_external - K (u + beta v)) - dt alpha v,   u <- u + dt v.
+//   v <- v + dt M^-1 (f_external - K (u + beta v)) - dt alpha v,   u <- u + dt v,
+// K u the elastic force of the chosen law (fem::ElasticForces; rotations taken from u).
 // Stable for dt < 2 / omega_max (undamped), omega_max^2 the largest eigenvalue of M^-1 K.
 #pragma once
 
 #include <vector>
 
+#include "fem/elastic_forces.h"
 #include "fem/time_integrator.h"
 
 namespace kerf::fem {
@@ -14,14 +16,17 @@ namespace kerf::fem {
 class ExplicitIntegrator : public TimeIntegrator {
  public:
   // bc must be valid for the model's mesh (see ValidateBoundaryConditions).
-  ExplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc);
+  ExplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
+                     ElasticOptions elastic = {});
 
-  // O(active vertices + edges).
+  // O(active vertices + edges), plus O(tets) for a rotating law.
   void Step(double dt, DynamicState* state) override;
   void Refresh(const BoundaryConditions& bc) override;
+  const ElasticForces& elastic_forces() const override { return forces_; }
 
  private:
   const TensorMassModel* model_;
+  ElasticForces forces_;
   std::vector<Eigen::Vector3d> external_;
   std::vector<double> inverse_mass_;
   std::vector<Eigen::Vector3d> elastic_;   // K (u + beta v)

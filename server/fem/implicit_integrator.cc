@@ -7,8 +7,8 @@
 
 namespace kerf::fem {
 ImplicitIntegrator::ImplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
-                                       ImplicitSolveOptions options)
-    : model_(&model), options_(options) {
+                                       ImplicitSolveOptions options, ElasticOptions elastic)
+    : model_(&model), options_(options), forces_(model, elastic) {
   assert(options.tolerance > 0 && options.max_iterations > 0);
   Refresh(bc);
 }
@@ -35,9 +35,10 @@ void ImplicitIntegrator::PrepareFor(double dt) {
   const Material& material = model_->material();
   const double a = 1 + dt * material.mass_damping;
   const double b = dt * material.stiffness_damping + dt * dt;
+  forces_.DiagonalBlocks(inverse_diagonal_);
   for (const std::uint32_t i : model_->active_vertices()) {
-    const Eigen::Matrix3d block = a * model_->masses()[i] * Eigen::Matrix3d::Identity() +
-                                  b * model_->vertex_tensor(static_cast<mesh::VertexId>(i));
+    const Eigen::Matrix3d block =
+        a * model_->masses()[i] * Eigen::Matrix3d::Identity() + b * inverse_diagonal_[i];
     inverse_diagonal_[i] = block.inverse();
   }
   prepared_dt_ = dt;
@@ -45,7 +46,7 @@ void ImplicitIntegrator::PrepareFor(double dt) {
 
 double ImplicitIntegrator::MultiplySystem(double a, double b, const std::vector<Eigen::Vector3d>& p,
                                           std::vector<Eigen::Vector3d>* q) {
-  model_->MultiplyStiffness(p, stiff_);
+  forces_.Multiply(p, stiff_);
   double pq = 0;
   for (const std::uint32_t i : model_->active_vertices()) {
     (*q)[i] = ((a * model_->masses()[i]) * p[i] + b * stiff_[i]).cwiseProduct(free_[i]);
@@ -59,6 +60,8 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
   const std::size_t n = model_->vertex_count();
   state->displacement.resize(n, Eigen::Vector3d::Zero());
   state->velocity.resize(n, Eigen::Vector3d::Zero());
+  forces_.Update(state->displacement);
+  if (forces_.rotating()) prepared_dt_ = 0;  // the diagonal blocks turned
   PrepareFor(dt);
   const Material& material = model_->material();
   const double a = 1 + dt * material.mass_damping;
@@ -67,19 +70,21 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
   const std::span<const std::uint32_t> active = model_->active_vertices();
 
   // The solve starts from g = S (v + change): its residual, for the new velocity, is
-  //   S (M v + dt (f - K u) - A g) = S (M (v - a g) + dt f - K (dt u + b g)),
-  // one multiply by K. Near equilibrium f and K u cancel, so the tolerance is relative to the
-  // size of the terms, not to their sum.
+  //   S (M v + dt (f - K u) - A g) = S (M (v - a g) + dt f - dt K (u + (b / dt) g)),
+  // one force evaluation (affine in its argument when rotating, so that form adds b K g and
+  // dt times the force at u). Near equilibrium f and K u cancel, so the tolerance is relative
+  // to the size of the terms, not to their sum.
   for (const std::uint32_t i : active) {
     const Eigen::Vector3d old = v[i].cwiseProduct(free_[i]);
     v[i] = (old + change_[i]).cwiseProduct(free_[i]);
     change_[i] = old;  // until the solve is done
     residual_[i] = model_->masses()[i] * (old - a * v[i]);
-    product_[i] = dt * state->displacement[i] + b * v[i];
+    product_[i] = state->displacement[i] + (b / dt) * v[i];
   }
-  model_->MultiplyStiffness(product_, stiff_);
+  forces_.Force(product_, stiff_);
   double scale = 0;
   for (const std::uint32_t i : active) {
+    stiff_[i] *= dt;
     residual_[i] = (residual_[i] + dt * external_[i] - stiff_[i]).cwiseProduct(free_[i]);
     const double mass = model_->masses()[i];
     scale += (mass * change_[i].cwiseAbs() + dt * external_[i].cwiseAbs() +

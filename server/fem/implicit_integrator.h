@@ -40,11 +40,12 @@ class ImplicitIntegrator : public TimeIntegrator {
  public:
   // bc must be valid for the model's mesh (see ValidateBoundaryConditions).
   ImplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
-                     ImplicitSolveOptions options = {});
+                     ImplicitSolveOptions options = {}, ElasticOptions elastic = {});
 
   // O((active vertices + edges) x iterations).
   void Step(double dt, DynamicState* state) override;
   void Refresh(const BoundaryConditions& bc) override;
+  const ElasticForces& elastic_forces() const override { return forces_; }
 
   const ImplicitSolveReport& last_solve() const { return last_solve_; }
 
@@ -60,11 +61,12 @@ class ImplicitIntegrator : public TimeIntegrator {
 
   const TensorMassModel* model_;
   ImplicitSolveOptions options_;
+  ElasticForces forces_;
   std::vector<Eigen::Vector3d> external_;
   std::vector<PrescribedDisplacement> prescribed_;
   std::vector<Eigen::Vector3d> free_;  // per component: 1 if it moves, 0 if held or massless
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
-  double prepared_dt_ = 0;  // the dt inverse_diagonal_ is for; 0 after a refresh
+  double prepared_dt_ = 0;  // the dt inverse_diagonal_ is for; 0 after a refresh or rotation
   std::vector<Eigen::Vector3d> residual_, direction_, preconditioned_, product_, stiff_;
   // v' - v of the last step (zero for vertices it did not move): the next solve starts from
   // v + change_.

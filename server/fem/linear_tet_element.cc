@@ -21,8 +21,9 @@ std::array<Eigen::Vector3d, 4> ShapeFunctionGradients(const std::array<Eigen::Ve
 
 LinearTetStiffness ComputeLinearTetStiffness(const std::array<Eigen::Vector3d, 4>& rest,
                                              const LameParameters& lame) {
-  const std::array<Eigen::Vector3d, 4> g = ShapeFunctionGradients(rest);
   LinearTetStiffness k;
+  k.gradients = ShapeFunctionGradients(rest);
+  const std::array<Eigen::Vector3d, 4>& g = k.gradients;
   k.volume = std::abs((rest[1] - rest[0]).cross(rest[2] - rest[0]).dot(rest[3] - rest[0])) / 6;
   for (int a = 0; a < 4; ++a) {
     for (int b = 0; b < 4; ++b) {

@@ -16,7 +16,8 @@ namespace kerf::fem {
 // The rest tet must have non-zero volume (asserted); its orientation does not matter.
 struct LinearTetStiffness {
   std::array<std::array<Eigen::Matrix3d, 4>, 4> blocks;
-  double volume;  // |V| of the rest shape
+  double volume;                             // |V| of the rest shape
+  std::array<Eigen::Vector3d, 4> gradients;  // g_0..g_3
 };
 
 LinearTetStiffness ComputeLinearTetStiffness(const std::array<Eigen::Vector3d, 4>& rest,

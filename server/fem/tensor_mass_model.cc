@@ -135,12 +135,16 @@ void TensorMassModel::Accumulate(TetId t, double sign) {
   if (added_with_.size() <= Index(t)) {
     added_with_.resize(Index(t) + 1);
     added_scale_.resize(Index(t) + 1);
+    elements_.resize(Index(t) + 1);
   }
   if (sign > 0) {
     added_with_[Index(t)] = RestCorners(*mesh_, t);
     added_scale_[Index(t)] = stiffness_scale_ ? stiffness_scale_(t) : 1.0;
   }
   const LinearTetStiffness k = ComputeLinearTetStiffness(added_with_[Index(t)], lame_);
+  if (sign > 0) {
+    elements_[Index(t)] = {k.gradients, k.volume * added_scale_[Index(t)]};
+  }
   const double corner_mass = material_.density * k.volume / 4;
   const double stiffness_sign = sign * added_scale_[Index(t)];
   for (int a = 0; a < 4; ++a) {

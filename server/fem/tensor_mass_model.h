@@ -33,6 +33,14 @@ struct EdgeTensor {
   std::uint32_t tets;  // live tets sharing this edge
 };
 
+// A live tet as the model added it: what an element-by-element force law (fem::ElasticForces)
+// needs to rebuild its stiffness K_ab = weight (lambda g_a g_b^T + mu g_b g_a^T +
+// mu (g_a . g_b) I) without the corners.
+struct TetElement {
+  std::array<Eigen::Vector3d, 4> gradients;  // of the shape functions on the rest shape, 1/m
+  double weight;                             // rest volume (m^3) times the stiffness scale
+};
+
 class TensorMassModel {
  public:
   // Builds from every live tet of `mesh`, which must outlive the model and only change
@@ -70,6 +78,9 @@ class TensorMassModel {
   double ElasticEnergy(std::span<const Eigen::Vector3d> u) const;
 
   const Material& material() const { return material_; }
+  const LameParameters& lame() const { return lame_; }
+  // Tet t as it was added; t must be live and synced.
+  const TetElement& element(mesh::TetId t) const { return elements_[mesh::Index(t)]; }
   const mesh::TetMesh& mesh() const { return *mesh_; }
   std::size_t vertex_count() const { return vertex_tensors_.size(); }
   const Eigen::Matrix3d& vertex_tensor(mesh::VertexId v) const {
@@ -109,7 +120,8 @@ class TensorMassModel {
   // The rest corners each live tet was added with (by tet index), to take it away exactly
   // after its vertices moved.
   std::vector<std::array<Eigen::Vector3d, 4>> added_with_;
-  std::vector<double> added_scale_;  // the stiffness scale each live tet was added with
+  std::vector<double> added_scale_;   // the stiffness scale each live tet was added with
+  std::vector<TetElement> elements_;  // by tet index, of live tets
   std::function<double(mesh::TetId)> stiffness_scale_;
 };
 

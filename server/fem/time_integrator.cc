@@ -12,12 +12,14 @@ DynamicState DynamicState::AtRest(const TensorMassModel& model, const BoundaryCo
   return state;
 }
 
-double MechanicalEnergy(const TensorMassModel& model, const DynamicState& state) {
+double MechanicalEnergy(const TensorMassModel& model, const DynamicState& state,
+                        const ElasticForces* forces) {
   double kinetic = 0;
   for (std::size_t i = 0; i < model.vertex_count(); ++i) {
     kinetic += 0.5 * model.masses()[i] * state.velocity[i].squaredNorm();
   }
-  return kinetic + model.ElasticEnergy(state.displacement);
+  return kinetic + (forces != nullptr ? forces->Energy(state.displacement)
+                                      : model.ElasticEnergy(state.displacement));
 }
 
 }  // namespace kerf::fem

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "fem/boundary_conditions.h"
+#include "fem/elastic_forces.h"
 #include "fem/tensor_mass_model.h"
 
 namespace kerf::fem {
@@ -19,8 +20,10 @@ struct DynamicState {
   static DynamicState AtRest(const TensorMassModel& model, const BoundaryConditions& bc);
 };
 
-// Kinetic energy v^T M v / 2 plus elastic energy u^T K u / 2.
-double MechanicalEnergy(const TensorMassModel& model, const DynamicState& state);
+// Kinetic energy v^T M v / 2 plus elastic energy u^T K u / 2, or that of `forces`' law (see
+// ElasticForces::Energy).
+double MechanicalEnergy(const TensorMassModel& model, const DynamicState& state,
+                        const ElasticForces* forces = nullptr);
 
 // Integrates M a = f_external - K u - C v for a TensorMassModel, with lumped mass and Rayleigh
 // damping C = alpha M + beta K. Prescribed components keep their values and zero velocity;
@@ -33,6 +36,8 @@ class TimeIntegrator {
   // Rebuilds what depends on the model's mass or the conditions (after the model synced
   // with a changed mesh). bc must be valid for the model's mesh.
   virtual void Refresh(const BoundaryConditions& bc) = 0;
+  // The force law it steps, with the rotations of its last step.
+  virtual const ElasticForces& elastic_forces() const = 0;
 };
 
 }  // namespace kerf::fem

@@ -86,6 +86,8 @@ absl::StatusOr<CreatedSession> SessionRegistry::Create(
   spec->mutable_cutting()->set_mode(scene->cut_mode);
   spec->mutable_cutting()->set_min_temporary_height(scene->min_temporary_height);
   spec->mutable_integration()->set_method(scene->method);
+  spec->mutable_elasticity()->set_model(sim::ElasticityModelOf(scene->elastic.law));
+  spec->mutable_elasticity()->set_auto_strain(scene->elastic.auto_strain);
   SessionOptions session_options = options_.session;
   if (request.physics_rate_hz() != 0) session_options.physics_rate_hz = request.physics_rate_hz();
   if (request.frame_rate_hz() != 0) session_options.frame_rate_hz = request.frame_rate_hz();

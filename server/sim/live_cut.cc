@@ -65,7 +65,7 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   iterations.clear();  // only those from the first pose count
 
   kerf::v1::LiveCutRow row;
-  const double start_energy = fem::MechanicalEnergy(sim.model(), sim.state());
+  const double start_energy = sim.MechanicalEnergy();
   const double start_time = time;
   const double duration = path.back().time * options.slow_down;
   const double pose_period = 1 / options.pose_rate_hz;
@@ -78,7 +78,7 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
     if (absl::Status s = sim.ApplyBladePose(pose); !s.ok()) return s;
     step_to(start_time + elapsed + pose_period);
     row.set_poses(n + 1);
-    const double ratio = fem::MechanicalEnergy(sim.model(), sim.state()) / start_energy;
+    const double ratio = sim.MechanicalEnergy() / start_energy;
     largest_speed = std::max(largest_speed, LargestSpeed(sim.state()));
     largest_ratio = std::isfinite(ratio) ? std::max(largest_ratio, ratio) : ratio;
     if (!std::isfinite(ratio) || ratio > options.blow_up_energy_ratio) {

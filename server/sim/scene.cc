@@ -104,6 +104,33 @@ absl::StatusOr<mesh::TetMesh> BuildMesh(const kerf::v1::MeshSource& source,
   return absl::InvalidArgumentError("mesh: choose file or lattice");
 }
 
+}  // namespace
+
+fem::ElasticLaw ElasticLawOf(kerf::v1::Elasticity::Model model) {
+  switch (model) {
+    case kerf::v1::Elasticity::COROTATIONAL:
+      return fem::ElasticLaw::kCorotational;
+    case kerf::v1::Elasticity::AUTO:
+      return fem::ElasticLaw::kAuto;
+    default:
+      return fem::ElasticLaw::kLinear;
+  }
+}
+
+kerf::v1::Elasticity::Model ElasticityModelOf(fem::ElasticLaw law) {
+  switch (law) {
+    case fem::ElasticLaw::kCorotational:
+      return kerf::v1::Elasticity::COROTATIONAL;
+    case fem::ElasticLaw::kAuto:
+      return kerf::v1::Elasticity::AUTO;
+    case fem::ElasticLaw::kLinear:
+      break;
+  }
+  return kerf::v1::Elasticity::LINEAR;
+}
+
+namespace {
+
 absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_dir) {
   absl::StatusOr<mesh::TetMesh> mesh = BuildMesh(spec.mesh(), base_dir);
   if (!mesh.ok()) return mesh.status();
@@ -137,6 +164,18 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
                        scene.min_temporary_height));
     }
   }
+  if (!kerf::v1::Elasticity::Model_IsValid(spec.elasticity().model())) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "elasticity.model must be LINEAR, COROTATIONAL or AUTO, got ", spec.elasticity().model()));
+  }
+  scene.elastic.law = ElasticLawOf(spec.elasticity().model());
+  if (spec.elasticity().has_auto_strain()) {
+    scene.elastic.auto_strain = spec.elasticity().auto_strain();
+    if (!(scene.elastic.auto_strain > 0 && scene.elastic.auto_strain < 1)) {
+      return absl::InvalidArgumentError(absl::StrCat(
+          "elasticity.auto_strain must be a strain in (0, 1), got ", scene.elastic.auto_strain));
+    }
+  }
   if (scene.cut_mode == kerf::v1::Cutting::MODE_UNSPECIFIED) {
     scene.cut_mode = kerf::v1::Cutting::PROGRESSIVE;
   }
@@ -145,6 +184,11 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
     scene.method = scene.cut_mode == kerf::v1::Cutting::PROGRESSIVE
                        ? kerf::v1::Integration::IMPLICIT_EULER
                        : kerf::v1::Integration::SYMPLECTIC_EULER;
+  }
+  if (scene.method == kerf::v1::Integration::STATIC &&
+      scene.elastic.law != fem::ElasticLaw::kLinear) {
+    return absl::InvalidArgumentError(
+        "elasticity.model must be LINEAR for a STATIC scene (the static solve is linear)");
   }
   if (!std::isfinite(scene.time_step) || scene.time_step < 0) {
     return absl::InvalidArgumentError(absl::StrCat(

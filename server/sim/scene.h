@@ -10,6 +10,7 @@
 #include "absl/strings/string_view.h"
 #include "cut/cutter.h"
 #include "fem/boundary_conditions.h"
+#include "fem/elastic_forces.h"
 #include "fem/material.h"
 #include "kerf/v1/scene.pb.h"
 #include "mesh/tet_mesh.h"
@@ -26,7 +27,12 @@ struct Scene {
   kerf::v1::Needs needs;  // carried for the service; the simulation itself needs no output
   kerf::v1::Cutting::Mode cut_mode = kerf::v1::Cutting::PROGRESSIVE;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // see kerf.v1.Cutting
+  fem::ElasticOptions elastic;                                    // see kerf.v1.Elasticity
 };
+
+// The law a scene's elasticity names (MODEL_UNSPECIFIED: linear), and back.
+fem::ElasticLaw ElasticLawOf(kerf::v1::Elasticity::Model model);
+kerf::v1::Elasticity::Model ElasticityModelOf(fem::ElasticLaw law);
 
 // Parses protobuf text format. INVALID_ARGUMENT "source:line:column: ..." for a syntax error
 // or an unknown field.

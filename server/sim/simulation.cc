@@ -30,12 +30,12 @@ absl::StatusOr<std::unique_ptr<Simulation>> Simulation::Create(Scene scene) {
   } else if (sim->implicit()) {
     auto implicit = std::make_unique<fem::ImplicitIntegrator>(
         *sim->model_, sim->scene_.conditions,
-        fem::ImplicitSolveOptions{.tolerance = kImplicitTolerance});
+        fem::ImplicitSolveOptions{.tolerance = kImplicitTolerance}, sim->scene_.elastic);
     sim->implicit_ = implicit.get();
     sim->integrator_ = std::move(implicit);
   } else {
-    sim->integrator_ =
-        std::make_unique<fem::ExplicitIntegrator>(*sim->model_, sim->scene_.conditions);
+    sim->integrator_ = std::make_unique<fem::ExplicitIntegrator>(
+        *sim->model_, sim->scene_.conditions, sim->scene_.elastic);
   }
   sim->UpdateCurrentPositions();
   return sim;

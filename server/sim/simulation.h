@@ -46,6 +46,14 @@ class Simulation {
   const fem::ImplicitSolveReport* last_implicit_solve() const {
     return implicit_ != nullptr ? &implicit_->last_solve() : nullptr;
   }
+  // The force law the integrator steps (null for STATIC, which is linear).
+  const fem::ElasticForces* elastic_forces() const {
+    return integrator_ != nullptr ? &integrator_->elastic_forces() : nullptr;
+  }
+  // Kinetic plus elastic energy, the elastic part by the scene's law.
+  double MechanicalEnergy() const {
+    return fem::MechanicalEnergy(*model_, state_, elastic_forces());
+  }
   // 2 / omega_max of the model as built (see fem::EstimateCriticalTimeStep).
   double critical_time_step() const { return critical_time_step_; }
 
