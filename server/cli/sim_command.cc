@@ -52,7 +52,8 @@ absl::StatusOr<std::string> Run(CommandArgs args) {
   absl::StatusOr<sim::Scene> scene = sim::LoadScene((*scene_arg)[0]);
   if (!scene.ok()) return scene.status();
   const std::string name = scene->name;
-  const bool explicit_method = scene->method != kerf::v1::Integration::STATIC;
+  const bool dynamic = scene->method != kerf::v1::Integration::STATIC;
+  const std::string method = kerf::v1::Integration::Method_Name(scene->method);
   absl::StatusOr<std::unique_ptr<sim::Simulation>> simulation =
       sim::Simulation::Create(*std::move(scene));
   if (!simulation.ok()) return simulation.status();
@@ -93,10 +94,9 @@ absl::StatusOr<std::string> Run(CommandArgs args) {
   for (const mesh::VertexId v : s.mesh().vertices()) {
     max_displacement = std::max(max_displacement, s.state().displacement[mesh::Index(v)].norm());
   }
-  std::string out =
-      absl::StrFormat("scene %s: %d vertices, %d tets, %s\n", name, s.mesh().vertex_count(),
-                      s.mesh().tet_count(), explicit_method ? "symplectic Euler" : "static");
-  if (explicit_method) {
+  std::string out = absl::StrFormat("scene %s: %d vertices, %d tets, %s\n", name,
+                                    s.mesh().vertex_count(), s.mesh().tet_count(), method);
+  if (dynamic) {
     absl::StrAppendFormat(&out, "  time step %.4g s (critical step %.4g s)\n", s.time_step(),
                           s.critical_time_step());
     absl::StrAppendFormat(&out, "  %d steps: %.6g s simulated in %.3g s wall (%.0f steps/s)\n",

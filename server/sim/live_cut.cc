@@ -52,6 +52,7 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   Simulation& sim = **created;
   double time = 0;
   std::vector<int> iterations;  // of the linear solves
+  std::vector<int> sub_steps;
   auto step_to = [&](double until) {
     while (time < until) {
       sim.Step();
@@ -59,10 +60,12 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
       if (sim.last_implicit_solve() != nullptr) {
         iterations.push_back(sim.last_implicit_solve()->iterations);
       }
+      if (sim.last_sub_steps() > 0) sub_steps.push_back(sim.last_sub_steps());
     }
   };
   step_to(options.settle_seconds);
   iterations.clear();  // only those from the first pose count
+  sub_steps.clear();
 
   kerf::v1::LiveCutRow row;
   const double start_energy = sim.MechanicalEnergy();
@@ -93,11 +96,17 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   row.set_wall_seconds_per_simulated_second(wall / (time - start_time));
-  if (!iterations.empty()) {
-    std::sort(iterations.begin(), iterations.end());
-    row.set_solve_iterations_median(iterations[iterations.size() / 2]);
-    row.set_solve_iterations_max(iterations.back());
-  }
+  auto median_and_max = [](std::vector<int> counts) -> std::pair<int, int> {
+    if (counts.empty()) return {0, 0};
+    std::sort(counts.begin(), counts.end());
+    return {counts[counts.size() / 2], counts.back()};
+  };
+  const auto [iterations_median, iterations_max] = median_and_max(std::move(iterations));
+  row.set_solve_iterations_median(iterations_median);
+  row.set_solve_iterations_max(iterations_max);
+  const auto [sub_steps_median, sub_steps_max] = median_and_max(std::move(sub_steps));
+  row.set_sub_steps_median(sub_steps_median);
+  row.set_sub_steps_max(sub_steps_max);
   row.set_largest_energy_ratio(largest_ratio);
   row.set_largest_speed(largest_speed);
   row.set_smallest_height(SmallestHeight(sim.mesh()));

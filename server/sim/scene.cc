@@ -149,7 +149,8 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
   }
   if (!kerf::v1::Integration::Method_IsValid(scene.method)) {
     return absl::InvalidArgumentError(
-        absl::StrCat("integration.method must be SYMPLECTIC_EULER, IMPLICIT_EULER or STATIC, got ",
+        absl::StrCat("integration.method must be SYMPLECTIC_EULER, SYMPLECTIC_EULER_SUBSTEPPED, "
+                     "IMPLICIT_EULER or STATIC, got ",
                      scene.method));
   }
   if (!kerf::v1::Cutting::Mode_IsValid(scene.cut_mode)) {

@@ -3,6 +3,7 @@
 #include "fem/explicit_integrator.h"
 #include "fem/implicit_integrator.h"
 #include "fem/static_solver.h"
+#include "fem/substepped_integrator.h"
 #include "mesh/mesh_quality.h"
 
 namespace kerf::sim {
@@ -18,9 +19,10 @@ absl::StatusOr<std::unique_ptr<Simulation>> Simulation::Create(Scene scene) {
     return s;
   }
   sim->critical_time_step_ = fem::EstimateCriticalTimeStep(*sim->model_);
-  sim->time_step_ = sim->scene_.time_step > 0 ? sim->scene_.time_step
-                    : sim->implicit()         ? kImplicitTimeStep
-                                              : 0.9 * sim->critical_time_step_;
+  const bool substepped = sim->scene_.method == kerf::v1::Integration::SYMPLECTIC_EULER_SUBSTEPPED;
+  sim->time_step_ = sim->scene_.time_step > 0       ? sim->scene_.time_step
+                    : sim->implicit() || substepped ? kImplicitTimeStep
+                                                    : 0.9 * sim->critical_time_step_;
   sim->state_ = fem::DynamicState::AtRest(*sim->model_, sim->scene_.conditions);
   if (sim->scene_.method == kerf::v1::Integration::STATIC) {
     absl::StatusOr<std::vector<Eigen::Vector3d>> u =
@@ -33,6 +35,11 @@ absl::StatusOr<std::unique_ptr<Simulation>> Simulation::Create(Scene scene) {
         fem::ImplicitSolveOptions{.tolerance = kImplicitTolerance}, sim->scene_.elastic);
     sim->implicit_ = implicit.get();
     sim->integrator_ = std::move(implicit);
+  } else if (substepped) {
+    auto substeps = std::make_unique<fem::SubsteppedIntegrator>(
+        *sim->model_, sim->scene_.conditions, sim->scene_.elastic);
+    sim->substepped_ = substeps.get();
+    sim->integrator_ = std::move(substeps);
   } else {
     sim->integrator_ = std::make_unique<fem::ExplicitIntegrator>(
         *sim->model_, sim->scene_.conditions, sim->scene_.elastic);
@@ -94,7 +101,7 @@ absl::Status Simulation::FollowCut() {
     state_.velocity[mesh::Index(m.vertex)] = v;
   }
   if (integrator_ != nullptr) integrator_->Refresh(scene_.conditions);
-  if (scene_.time_step == 0 && !implicit()) {
+  if (scene_.time_step == 0 && scene_.method == kerf::v1::Integration::SYMPLECTIC_EULER) {
     critical_time_step_ = fem::EstimateCriticalTimeStep(*model_);
     time_step_ = 0.9 * critical_time_step_;
   }

@@ -8,6 +8,7 @@
 #include "absl/status/statusor.h"
 #include "cut/cutter.h"
 #include "fem/implicit_integrator.h"
+#include "fem/substepped_integrator.h"
 #include "fem/tensor_mass_model.h"
 #include "fem/time_integrator.h"
 #include "sim/scene.h"
@@ -29,7 +30,8 @@ class Simulation {
   // elastic model follows incrementally, and the vertices the cut made take displacement and
   // velocity interpolated from the vertices they came from. With SYMPLECTIC_EULER and an
   // automatic time step the step is re-estimated after a cut (small new tets lower the
-  // critical step); IMPLICIT_EULER keeps its step.
+  // critical step); IMPLICIT_EULER and SYMPLECTIC_EULER_SUBSTEPPED keep their step (the latter
+  // counts its sub-steps again).
   // INVALID_ARGUMENT for a bad pose, which changes nothing.
   absl::Status ApplyBladePose(const cut::BladePose& pose);
   // The blade is withdrawn: everything it cut is opened.
@@ -54,10 +56,12 @@ class Simulation {
   double MechanicalEnergy() const {
     return fem::MechanicalEnergy(*model_, state_, elastic_forces());
   }
+  // Sub-steps of the last step (SYMPLECTIC_EULER_SUBSTEPPED; 0 otherwise).
+  int last_sub_steps() const { return substepped_ != nullptr ? substepped_->last_sub_steps() : 0; }
   // 2 / omega_max of the model as built (see fem::EstimateCriticalTimeStep).
   double critical_time_step() const { return critical_time_step_; }
 
-  // The automatic step of IMPLICIT_EULER: the haptic rate.
+  // The automatic step of IMPLICIT_EULER and SYMPLECTIC_EULER_SUBSTEPPED: the haptic rate.
   static constexpr double kImplicitTimeStep = 1e-3;  // s
   // Its linear solve's tolerance (fem::ImplicitSolveOptions): a live progressive cut of
   // lattice-tension (kerf experiment live-cut) cuts the same tets at 1e-4 as at 1e-6, with
@@ -74,6 +78,7 @@ class Simulation {
   std::unique_ptr<fem::TensorMassModel> model_;
   std::unique_ptr<fem::TimeIntegrator> integrator_;  // null for STATIC
   fem::ImplicitIntegrator* implicit_ = nullptr;      // integrator_, if IMPLICIT_EULER
+  fem::SubsteppedIntegrator* substepped_ = nullptr;  // if SYMPLECTIC_EULER_SUBSTEPPED
   fem::DynamicState state_;
   double time_step_ = 0;
   double critical_time_step_ = 0;
