@@ -119,18 +119,7 @@ void ElasticForces::Force(std::span<const Eigen::Vector3d> w, std::span<Eigen::V
     model_->MultiplyStiffness(w, f);
     return;
   }
-  for (const std::uint32_t i : model_->active_vertices()) f[i].setZero();
-  const mesh::TetMesh& mesh = model_->mesh();
-  for (const mesh::TetId t : mesh.tets()) {
-    const mesh::TetVertices& v = mesh.tet(t);
-    const TetElement& e = model_->element(t);
-    const Eigen::Matrix3d& r = rotations_[Index(t)];
-    // The unrotated displacement's gradient: R^T (I + grad w) - I.
-    const Eigen::Matrix3d g = r.transpose() * (Eigen::Matrix3d::Identity() + Gradient(v, e, w)) -
-                              Eigen::Matrix3d::Identity();
-    const Eigen::Matrix3d p = e.weight * r * Stress(0.5 * (g + g.transpose()), model_->lame());
-    for (int a = 0; a < 4; ++a) f[Index(v[a])] += p * e.gradients[a];
-  }
+  MultiplyRotated(w, /*from_rest=*/true, f);
 }
 
 void ElasticForces::Multiply(std::span<const Eigen::Vector3d> p,
@@ -139,15 +128,22 @@ void ElasticForces::Multiply(std::span<const Eigen::Vector3d> p,
     model_->MultiplyStiffness(p, q);
     return;
   }
-  for (const std::uint32_t i : model_->active_vertices()) q[i].setZero();
+  MultiplyRotated(p, /*from_rest=*/false, q);
+}
+
+void ElasticForces::MultiplyRotated(std::span<const Eigen::Vector3d> w, bool from_rest,
+                                    std::span<Eigen::Vector3d> f) const {
+  for (const std::uint32_t i : model_->active_vertices()) f[i].setZero();
   const mesh::TetMesh& mesh = model_->mesh();
   for (const mesh::TetId t : mesh.tets()) {
     const mesh::TetVertices& v = mesh.tet(t);
     const TetElement& e = model_->element(t);
     const Eigen::Matrix3d& r = rotations_[Index(t)];
-    const Eigen::Matrix3d g = r.transpose() * Gradient(v, e, p);
-    const Eigen::Matrix3d s = e.weight * r * Stress(0.5 * (g + g.transpose()), model_->lame());
-    for (int a = 0; a < 4; ++a) q[Index(v[a])] += s * e.gradients[a];
+    // The unrotated gradient: R^T grad w, plus R^T - I for the rest shape's turn.
+    Eigen::Matrix3d g = r.transpose() * Gradient(v, e, w);
+    if (from_rest) g += r.transpose() - Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d p = e.weight * r * Stress(0.5 * (g + g.transpose()), model_->lame());
+    for (int a = 0; a < 4; ++a) f[Index(v[a])] += p * e.gradients[a];
   }
 }
 

@@ -64,6 +64,10 @@ class ElasticForces {
   double largest_strain() const { return largest_strain_; }
 
  private:
+  // f = sum_e R_e K_e (R_e^T w_e), plus R_e K_e (R_e^T X_e - X_e) if from_rest.
+  void MultiplyRotated(std::span<const Eigen::Vector3d> w, bool from_rest,
+                       std::span<Eigen::Vector3d> f) const;
+
   const TensorMassModel* model_;
   ElasticOptions options_;
   bool rotating_ = false;
