@@ -57,7 +57,7 @@ absl::StatusOr<Scene> LiverScene(const std::string& mesh_path) {
 // cut made live (the lattice scenes along both lattice paths, the liver across, when shared/
 // is beside the repo). Blowing up is the live-cut experiment's test (energy over 10 times that
 // at the first pose): the mechanical energy leaves out gravity's, so a liver whose cut lets it
-// sag gains some (1.56 times) without anything going wrong.
+// sag gains some (1.47 times) without anything going wrong.
 TEST(LiveCut, NoStandardSceneBlowsUpWithItsDefaults) {
   struct Run {
     std::string scene;
@@ -84,7 +84,11 @@ TEST(LiveCut, NoStandardSceneBlowsUpWithItsDefaults) {
       }
     }
     ASSERT_TRUE(path.ok()) << path.status();
-    const absl::StatusOr<kerf::v1::LiveCutRow> row = RunLiveCut(*std::move(scene), *path, {});
+    // The liver's cut, 75 poses, is followed 4 times slower than written (2.5 cm/s), not 16: a
+    // quarter of the steps, for the sanitizer build's sake.
+    LiveCutOptions options;
+    if (run.scene == "liver") options.slow_down = 4;
+    const absl::StatusOr<kerf::v1::LiveCutRow> row = RunLiveCut(*std::move(scene), *path, options);
     ASSERT_TRUE(row.ok()) << row.status();
     std::printf("%s along %s: largest energy ratio %.3g, largest speed %.3g, %u tets cut\n",
                 run.scene.c_str(), run.path.c_str(), row->largest_energy_ratio(),
