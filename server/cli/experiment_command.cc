@@ -2,9 +2,11 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_split.h"
 #include "cli/command_args.h"
 #include "cli/cut_command.h"
 #include "cli/json_output.h"
+#include "cli/tradeoff_experiment.h"
 #include "cut/progressive_case_paths.h"
 #include "embedded_text.h"
 #include "kerf/v1/cut_report.pb.h"
@@ -14,6 +16,11 @@
 
 namespace kerf::cli {
 namespace {
+
+constexpr absl::string_view kUsage =
+    "kerf experiment lattice-cut|progressive-cases|live-cut [--json]\n"
+    "       kerf experiment tradeoff [--resolutions N,N,...] [--reference-resolution N] "
+    "[--seconds S] [--json]";
 
 absl::StatusOr<std::string> LatticeCut(bool json) {
   absl::StatusOr<std::string> text = sim::EmbeddedSceneText("lattice-tension");
@@ -165,20 +172,60 @@ absl::StatusOr<std::string> LiveCut(bool json) {
   return out;
 }
 
+// kerf experiment tradeoff [--resolutions N,N,...] [--reference-resolution N] [--seconds S].
+absl::StatusOr<std::string> Tradeoff(CommandArgs* rest, bool json) {
+  TradeoffOptions options;
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> resolutions =
+      rest->TakeOption("--resolutions", 1);
+  if (!resolutions.ok()) return resolutions.status();
+  if (resolutions->has_value()) {
+    options.resolutions.clear();
+    for (absl::string_view n : absl::StrSplit((**resolutions)[0], ',')) {
+      absl::StatusOr<int> value = ParseIntArg(n, "--resolutions");
+      if (!value.ok()) return value.status();
+      options.resolutions.push_back(*value);
+    }
+  }
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> reference =
+      rest->TakeOption("--reference-resolution", 1);
+  if (!reference.ok()) return reference.status();
+  if (reference->has_value()) {
+    absl::StatusOr<int> value = ParseIntArg((**reference)[0], "--reference-resolution");
+    if (!value.ok()) return value.status();
+    options.reference_resolution = *value;
+  }
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> seconds =
+      rest->TakeOption("--seconds", 1);
+  if (!seconds.ok()) return seconds.status();
+  if (seconds->has_value()) {
+    absl::StatusOr<double> value = ParseDoubleArg((**seconds)[0], "--seconds");
+    if (!value.ok()) return value.status();
+    if (!(*value > 0 && *value <= 600)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--seconds must be in (0, 600], got ", *value));
+    }
+    options.settle_seconds = *value;
+  }
+  if (absl::Status s = rest->TakePositionals(0, kUsage).status(); !s.ok()) return s;
+  absl::StatusOr<kerf::v1::TradeoffExperiment> experiment = RunTradeoff(options);
+  if (!experiment.ok()) return experiment.status();
+  return json ? FormatProtoJson(*experiment) : FormatTradeoff(*experiment);
+}
+
 }  // namespace
 
 absl::StatusOr<std::string> RunExperimentCommand(const std::vector<absl::string_view>& args) {
-  CommandArgs rest(args);
+  if (args.empty()) return absl::InvalidArgumentError(absl::StrCat("usage: ", kUsage));
+  CommandArgs rest(std::vector<absl::string_view>(args.begin() + 1, args.end()));
   const bool json = rest.TakeFlag("--json");
-  absl::StatusOr<std::vector<absl::string_view>> name =
-      rest.TakePositionals(1, "kerf experiment lattice-cut|progressive-cases|live-cut [--json]");
-  if (!name.ok()) return name.status();
-  if ((*name)[0] == "lattice-cut") return LatticeCut(json);
-  if ((*name)[0] == "progressive-cases") return ProgressiveCases(json);
-  if ((*name)[0] == "live-cut") return LiveCut(json);
+  if (args[0] == "tradeoff") return Tradeoff(&rest, json);
+  if (absl::Status s = rest.TakePositionals(0, kUsage).status(); !s.ok()) return s;
+  if (args[0] == "lattice-cut") return LatticeCut(json);
+  if (args[0] == "progressive-cases") return ProgressiveCases(json);
+  if (args[0] == "live-cut") return LiveCut(json);
   return absl::InvalidArgumentError(
-      absl::StrCat("unknown experiment '", (*name)[0],
-                   "'; there are: lattice-cut, progressive-cases, live-cut"));
+      absl::StrCat("unknown experiment '", args[0],
+                   "'; there are: lattice-cut, progressive-cases, live-cut, tradeoff"));
 }
 
 }  // namespace kerf::cli

@@ -5,6 +5,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "cli/chart_command.h"
 #include "cli/cut_command.h"
 #include "cli/experiment_command.h"
 #include "cli/mesh_commands.h"
@@ -25,6 +26,9 @@ constexpr absl::string_view kUsage =
     "       kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred]\n"
     "                [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]\n"
     "       kerf experiment lattice-cut|progressive-cases|live-cut [--json]\n"
+    "       kerf experiment tradeoff [--resolutions N,N,...] [--reference-resolution N]\n"
+    "                [--seconds S] [--json]\n"
+    "       kerf chart TRADEOFF.json --out PREFIX\n"
     "       kerf replay JOURNAL [--speed X] [--listen HOST:PORT] [--export-at T,...|end]\n"
     "                   [--out-prefix P] [--linger S] [--json]\n";
 
@@ -50,6 +54,8 @@ int main(int argc, char** argv) {
     result = kerf::cli::RunStaticCommand(rest);
   } else if (args[0] == "replay") {
     result = kerf::cli::RunReplayCommand(rest);
+  } else if (args[0] == "chart") {
+    result = kerf::cli::RunChartCommand(rest);
   } else if (args[0] == "demo") {
     result = kerf::cli::RunDemoCommand(rest);
   } else {

@@ -1,5 +1,8 @@
 #include "sim/simulation.h"
 
+#include <algorithm>
+
+#include "absl/strings/str_cat.h"
 #include "fem/explicit_integrator.h"
 #include "fem/implicit_integrator.h"
 #include "fem/static_solver.h"
@@ -78,6 +81,27 @@ absl::Status Simulation::WithdrawBlade() {
   if (cutter_ == nullptr) return absl::OkStatus();
   cutter_->Finish();
   return FollowCut();
+}
+
+absl::Status Simulation::SetDisplacement(std::vector<Eigen::Vector3d> u) {
+  if (u.size() != state_.displacement.size()) {
+    return absl::InvalidArgumentError(absl::StrCat("a displacement for ", u.size(),
+                                                   " vertices, the mesh has ",
+                                                   state_.displacement.size(), " slots"));
+  }
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    if (!u[i].allFinite()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("the displacement of vertex ", i, " is not finite"));
+    }
+  }
+  for (const fem::PrescribedDisplacement& p : scene_.conditions.prescribed) {
+    u[mesh::Index(p.vertex)][p.component] = p.value;
+  }
+  state_.displacement = std::move(u);
+  std::fill(state_.velocity.begin(), state_.velocity.end(), Eigen::Vector3d::Zero());
+  UpdateCurrentPositions();
+  return absl::OkStatus();
 }
 
 absl::Status Simulation::FollowCut() {

@@ -36,6 +36,10 @@ class Simulation {
   absl::Status ApplyBladePose(const cut::BladePose& pose);
   // The blade is withdrawn: everything it cut is opened.
   absl::Status WithdrawBlade();
+  // Starts again from displacement `u` (by vertex index, one per vertex slot) at rest: a guess
+  // near the answer, for runs that settle. Prescribed components keep their values.
+  // INVALID_ARGUMENT for the wrong count or a value that is not finite.
+  absl::Status SetDisplacement(std::vector<Eigen::Vector3d> u);
 
   const Scene& scene() const { return scene_; }
   const mesh::TetMesh& mesh() const { return scene_.mesh; }

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 
 #include "absl/strings/str_cat.h"
@@ -12,6 +14,7 @@
 #include "kerf/v1/cut_report.pb.h"
 #include "kerf/v1/live_cut_report.pb.h"
 #include "kerf/v1/mesh_report.pb.h"
+#include "kerf/v1/tradeoff_report.pb.h"
 #include "support/run_command.h"
 #include "support/shared_meshes.h"
 
@@ -228,6 +231,99 @@ TEST(KerfCli, ProgressiveCasesExperimentReachesEveryCase) {
     EXPECT_EQ(r.invalid_poses(), 0u) << r.path();
     EXPECT_TRUE(r.valid()) << r.path();
   }
+}
+
+// Speed against accuracy on the three bars at n = 2 (references by CalculiX at n = 2, 2 s of
+// settling: a small run of what the README charts), then the chart drawn from its JSON.
+TEST(KerfCli, TradeoffExperimentIsChartedWithItsParetoFront) {
+  const std::string dir = ::testing::TempDir();
+  const std::string json = absl::StrCat(dir, "/tradeoff.json");
+  CliResult run = Kerf(absl::StrCat(
+      "experiment tradeoff --resolutions 2 --reference-resolution 2 --seconds 2 --json > ", json));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream in(json);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  kerf::v1::TradeoffExperiment experiment;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(text, &experiment).ok()) << text;
+  ASSERT_EQ(experiment.references_size(), 3);
+  EXPECT_EQ(experiment.references(0).load(), "cantilever");
+  // CalculiX's quadratic tets at n = 2 lock far less than linear ones (0.0606, accuracy.md).
+  EXPECT_LT(experiment.references(0).value(2), -0.15);
+  EXPECT_GT(experiment.references(0).value(2), -0.19);
+  ASSERT_EQ(experiment.rows_size(), 3 * 2 * 3);  // bars x laws x integrators
+  std::map<std::string, int> front;
+  for (const kerf::v1::TradeoffRow& row : experiment.rows()) {
+    SCOPED_TRACE(absl::StrCat(row.load(), ", ", row.law(), ", ", row.integration()));
+    EXPECT_FALSE(row.blew_up());
+    EXPECT_GT(row.wall_seconds_per_simulated_second(), 0);
+    EXPECT_EQ(row.tets(), 240u);
+    EXPECT_EQ(row.default_configuration(),
+              row.integration() == "IMPLICIT_EULER" && row.law() == "linear");
+    // Linear tets at n = 2 lock: the cantilever bends about a third of the reference.
+    if (row.load() == "cantilever") {
+      EXPECT_NEAR(row.relative_error(), 0.68, 0.05);
+    }
+    // A row is on the front exactly when no row of its bar is cheaper and as accurate.
+    bool dominated = false;
+    for (const kerf::v1::TradeoffRow& other : experiment.rows()) {
+      const double a = other.wall_seconds_per_simulated_second();
+      const double b = row.wall_seconds_per_simulated_second();
+      dominated |= &other != &row && other.load() == row.load() && a <= b &&
+                   other.relative_error() <= row.relative_error() &&
+                   (a < b || other.relative_error() < row.relative_error());
+    }
+    EXPECT_EQ(row.pareto(), !dominated);
+    front[row.load()] += row.pareto();
+  }
+  EXPECT_EQ(front.size(), 3u);
+  // The twist: the linear model's error is its artefact, several times the corotational one's.
+  for (const absl::string_view integration : {"SYMPLECTIC_EULER", "IMPLICIT_EULER"}) {
+    double error[2] = {0, 0};
+    for (const kerf::v1::TradeoffRow& row : experiment.rows()) {
+      if (row.load() != "twist" || row.integration() != integration) continue;
+      error[row.law() == "linear" ? 0 : 1] = row.relative_error();
+    }
+    EXPECT_GT(error[0], 3 * error[1]) << integration;
+  }
+
+  run = Kerf(absl::StrCat("chart ", json, " --out ", dir, "/tradeoff"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream svg(absl::StrCat(dir, "/tradeoff.svg"));
+  const std::string drawing((std::istreambuf_iterator<char>(svg)),
+                            std::istreambuf_iterator<char>());
+  EXPECT_THAT(drawing, HasSubstr("<svg"));
+  EXPECT_THAT(drawing, HasSubstr("Pareto front"));
+  EXPECT_THAT(drawing, HasSubstr("default (IMPLICIT_EULER, linear)"));
+  EXPECT_THAT(drawing, HasSubstr("twist: displacement of the mid-length corner"));
+  std::ifstream png(absl::StrCat(dir, "/tradeoff.png"), std::ios::binary);
+  std::string signature(8, '\0');
+  png.read(signature.data(), 8);
+  EXPECT_EQ(signature, "\x89PNG\r\n\x1a\n");
+  EXPECT_GT(std::filesystem::file_size(absl::StrCat(dir, "/tradeoff.png")), 20000u);
+}
+
+TEST(KerfCli, TradeoffAndChartRefuseBadInputByName) {
+  CliResult run = Kerf("experiment tradeoff --resolutions 3");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("the bar's resolution must be even and in [2, 64], got 3"));
+  run = Kerf("experiment tradeoff --seconds -1");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("--seconds must be in (0, 600], got -1"));
+  run = Kerf("experiment tradeoff --resolutions 2,x");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("--resolutions"));
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(absl::StrCat(dir, "/not-tradeoff.json")) << "{\"rows\": 3}";
+  run = Kerf(absl::StrCat("chart ", dir, "/not-tradeoff.json --out ", dir, "/x"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("is not the JSON of kerf experiment tradeoff"));
+  std::ofstream(absl::StrCat(dir, "/empty-tradeoff.json")) << "{}";
+  run = Kerf(absl::StrCat("chart ", dir, "/empty-tradeoff.json --out ", dir, "/x"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("has no rows to draw"));
+  run = Kerf(absl::StrCat("chart ", dir, "/empty-tradeoff.json"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("--out is required"));
 }
 
 // The failure the paper left as future work, kept failing the same way: explicit integration
