@@ -21,7 +21,7 @@ inline constexpr double kLiverUnit = 0.01;  // m
 // edge along each axis (a fixed pseudo-random sequence), each move kept only if every tet
 // around it keeps a smallest dihedral angle of 1.5 degrees or more: 11 tets under 10 degrees
 // (the smallest 3.5) and 43 under 20, against the lattice's 45 everywhere, radius ratios down
-// to 0.011 (lattice: 0.73); the same surface, conditions and volume.
+// to 0.011 (lattice: 0.72); the same surface, conditions and volume.
 absl::StatusOr<Scene> PoorQualityLatticeScene();
 
 // "liver": the liver of `mesh_path` in centimetres, held at its left end (x under -4 cm) under
