@@ -6,6 +6,7 @@
 #include "cli/command_args.h"
 #include "cli/cut_command.h"
 #include "cli/json_output.h"
+#include "cli/stability_experiment.h"
 #include "cli/tradeoff_experiment.h"
 #include "cut/progressive_case_paths.h"
 #include "embedded_text.h"
@@ -13,6 +14,7 @@
 #include "kerf/v1/live_cut_report.pb.h"
 #include "mesh/mesh_quality.h"
 #include "sim/live_cut.h"
+#include "sim/standard_scenes.h"
 
 namespace kerf::cli {
 namespace {
@@ -20,7 +22,8 @@ namespace {
 constexpr absl::string_view kUsage =
     "kerf experiment lattice-cut|progressive-cases|live-cut [--json]\n"
     "       kerf experiment tradeoff [--resolutions N,N,...] [--reference-resolution N] "
-    "[--seconds S] [--json]";
+    "[--seconds S] [--json]\n"
+    "       kerf experiment stability [--liver FILE] [--scenes NAME,...] [--slow-down X] [--json]";
 
 absl::StatusOr<std::string> LatticeCut(bool json) {
   absl::StatusOr<std::string> text = sim::EmbeddedSceneText("lattice-tension");
@@ -212,6 +215,48 @@ absl::StatusOr<std::string> Tradeoff(CommandArgs* rest, bool json) {
   return json ? FormatProtoJson(*experiment) : FormatTradeoff(*experiment);
 }
 
+// kerf experiment stability [--liver FILE] [--scenes NAME,...] [--slow-down X].
+absl::StatusOr<std::string> Stability(CommandArgs* rest, bool json) {
+  StabilityOptions options;
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> liver =
+      rest->TakeOption("--liver", 1);
+  if (!liver.ok()) return liver.status();
+  if (liver->has_value()) options.liver_mesh_path = std::string((**liver)[0]);
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> scenes =
+      rest->TakeOption("--scenes", 1);
+  if (!scenes.ok()) return scenes.status();
+  if (scenes->has_value()) {
+    options.scenes.clear();
+    for (absl::string_view name : absl::StrSplit((**scenes)[0], ',')) {
+      if (name == "liver") {
+        return absl::InvalidArgumentError("--scenes: the liver comes with --liver FILE");
+      }
+      // Built once here, so that a wrong name is refused before any run.
+      if (absl::Status s = sim::StandardScene(name, "").status(); !s.ok()) return s;
+      options.scenes.emplace_back(name);
+    }
+  }
+  if (!options.liver_mesh_path.empty()) {
+    if (absl::Status s = sim::LiverScene(options.liver_mesh_path).status(); !s.ok()) return s;
+  }
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> slow_down =
+      rest->TakeOption("--slow-down", 1);
+  if (!slow_down.ok()) return slow_down.status();
+  if (slow_down->has_value()) {
+    absl::StatusOr<double> value = ParseDoubleArg((**slow_down)[0], "--slow-down");
+    if (!value.ok()) return value.status();
+    if (!(*value >= 1 && *value <= 100)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--slow-down must be in [1, 100], got ", *value));
+    }
+    options.live_cut.slow_down = *value;
+  }
+  if (absl::Status s = rest->TakePositionals(0, kUsage).status(); !s.ok()) return s;
+  absl::StatusOr<kerf::v1::StabilityExperiment> experiment = RunStability(options);
+  if (!experiment.ok()) return experiment.status();
+  return json ? FormatProtoJson(*experiment) : FormatStability(*experiment);
+}
+
 }  // namespace
 
 absl::StatusOr<std::string> RunExperimentCommand(const std::vector<absl::string_view>& args) {
@@ -219,13 +264,14 @@ absl::StatusOr<std::string> RunExperimentCommand(const std::vector<absl::string_
   CommandArgs rest(std::vector<absl::string_view>(args.begin() + 1, args.end()));
   const bool json = rest.TakeFlag("--json");
   if (args[0] == "tradeoff") return Tradeoff(&rest, json);
+  if (args[0] == "stability") return Stability(&rest, json);
   if (absl::Status s = rest.TakePositionals(0, kUsage).status(); !s.ok()) return s;
   if (args[0] == "lattice-cut") return LatticeCut(json);
   if (args[0] == "progressive-cases") return ProgressiveCases(json);
   if (args[0] == "live-cut") return LiveCut(json);
   return absl::InvalidArgumentError(
       absl::StrCat("unknown experiment '", args[0],
-                   "'; there are: lattice-cut, progressive-cases, live-cut, tradeoff"));
+                   "'; there are: lattice-cut, progressive-cases, live-cut, tradeoff, stability"));
 }
 
 }  // namespace kerf::cli

@@ -28,6 +28,8 @@ constexpr absl::string_view kUsage =
     "       kerf experiment lattice-cut|progressive-cases|live-cut [--json]\n"
     "       kerf experiment tradeoff [--resolutions N,N,...] [--reference-resolution N]\n"
     "                [--seconds S] [--json]\n"
+    "       kerf experiment stability [--liver FILE] [--scenes NAME,...] [--slow-down X]\n"
+    "                [--json]\n"
     "       kerf chart TRADEOFF.json --out PREFIX\n"
     "       kerf replay JOURNAL [--speed X] [--listen HOST:PORT] [--export-at T,...|end]\n"
     "                   [--out-prefix P] [--linger S] [--json]\n";

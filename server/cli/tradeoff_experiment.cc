@@ -14,6 +14,7 @@ namespace {
 constexpr kerf::v1::Integration::Method kMethods[] = {
     kerf::v1::Integration::SYMPLECTIC_EULER, kerf::v1::Integration::SYMPLECTIC_EULER_SUBSTEPPED,
     kerf::v1::Integration::IMPLICIT_EULER};
+constexpr double kSameError = 1e-3;  // relative
 constexpr fem::ElasticLaw kLaws[] = {fem::ElasticLaw::kLinear, fem::ElasticLaw::kCorotational};
 
 std::string QuantityName(sim::BarLoad load) {
@@ -28,11 +29,15 @@ std::string QuantityName(sim::BarLoad load) {
   return "";
 }
 
+// a is as cheap as b and as accurate (errors within kSameError of each other count as equal:
+// rows that settle to the same answer differ by what settling leaves), and better in one.
 bool Dominates(const kerf::v1::TradeoffRow& a, const kerf::v1::TradeoffRow& b) {
   const double cost_a = a.wall_seconds_per_simulated_second();
   const double cost_b = b.wall_seconds_per_simulated_second();
-  return cost_a <= cost_b && a.relative_error() <= b.relative_error() &&
-         (cost_a < cost_b || a.relative_error() < b.relative_error());
+  const bool same_error =
+      std::abs(a.relative_error() - b.relative_error()) <= kSameError * b.relative_error();
+  const bool as_accurate = same_error || a.relative_error() < b.relative_error();
+  return cost_a <= cost_b && as_accurate && (cost_a < cost_b || !same_error);
 }
 
 }  // namespace

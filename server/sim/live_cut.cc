@@ -7,6 +7,7 @@
 
 #include "fem/explicit_integrator.h"
 #include "geometry/tet_measures.h"
+#include "mesh/mesh_quality.h"
 #include "mesh/mesh_validation.h"
 #include "sim/simulation.h"
 
@@ -118,6 +119,9 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   row.set_held_poses(static_cast<std::uint32_t>(stats.held_poses));
   row.set_dropped_hits(static_cast<std::uint32_t>(stats.dropped_hits));
   row.set_valid(mesh::ValidateMesh(sim.mesh()).ok());
+  const mesh::MeshQuality quality = mesh::MeasureMeshQuality(sim.mesh());
+  row.set_smallest_radius_ratio(quality.min_radius_ratio);
+  row.set_smallest_dihedral_deg(quality.min_dihedral_deg);
   return row;
 }
 

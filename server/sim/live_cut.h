@@ -22,9 +22,9 @@ struct LiveCutOptions {
 
 // Runs `scene` (explicit or implicit; STATIC is FAILED_PRECONDITION) with the blade along
 // `path` (times from 0, as written), interpolated linearly to the pose rate, and withdraws
-// it at the end. Fills every field of the row but `integration` and `cut_mode`. A pose the
-// cutter refuses is returned as its error. The wall time is measured, so that field alone
-// differs between runs.
+// it at the end. Fills every field of the row but `integration`, `cut_mode`, `scene`, `path`
+// and `law`. A pose the cutter refuses is returned as its error. The wall time is measured, so
+// that field alone differs between runs.
 absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
                                                 const std::vector<cut::BladePose>& path,
                                                 const LiveCutOptions& options);
