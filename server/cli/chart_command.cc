@@ -19,10 +19,12 @@ constexpr absl::string_view kUsage = "kerf chart TRADEOFF.json --out PREFIX";
 // Marks by integrator (as they appear in TradeoffRow.integration), colours by law.
 struct Series {
   const char* integration;
+  const char* title;
   int point_type;  // gnuplot: 7 circle, 9 triangle, 5 square (filled)
 };
-constexpr Series kIntegrations[] = {
-    {"SYMPLECTIC_EULER", 7}, {"SYMPLECTIC_EULER_SUBSTEPPED", 9}, {"IMPLICIT_EULER", 5}};
+constexpr Series kIntegrations[] = {{"SYMPLECTIC_EULER", "explicit", 7},
+                                    {"SYMPLECTIC_EULER_SUBSTEPPED", "sub-stepped", 9},
+                                    {"IMPLICIT_EULER", "backward Euler", 5}};
 constexpr std::pair<const char*, const char*> kLaws[] = {{"linear", "#1f77b4"},
                                                          {"corotational", "#d62728"}};
 
@@ -60,7 +62,9 @@ std::string Panel(const kerf::v1::TradeoffExperiment& experiment,
       absl::StrFormat("set title \"%s: %s\\nagainst %s%s\"\n%s", reference.load(),
                       reference.quantity(), reference.solver(),
                       blew_up > 0 ? absl::StrCat("; ", blew_up, " runs blew up (not drawn)") : "",
-                      with_key ? "set key bottom left box opaque font ',9'\n" : "unset key\n");
+                      with_key ? "set key bottom left box opaque font ',9' spacing 0.9 width -3\n"
+                                 "set offsets 0, 0, 0, graph 0.5\n"
+                               : "unset key\nset offsets 0, 0, 0, 0\n");
   absl::StrAppend(&out, "plot '", reference.load(),
                   "-front.dat' using 1:2 with lines dashtype 2 linewidth 2 linecolor rgb "
                   "'#777777' title 'Pareto front'");
@@ -70,13 +74,13 @@ std::string Panel(const kerf::v1::TradeoffExperiment& experiment,
                             ", \\\n  %s using 1:(($3==%d && $4==%d) ? $2 : 1/0) with points "
                             "pointtype %d pointsize 1.4 linecolor rgb '%s' title '%s, %s'",
                             data, law, i, kIntegrations[i].point_type, kLaws[law].second,
-                            kLaws[law].first, kIntegrations[i].integration);
+                            kLaws[law].first, kIntegrations[i].title);
     }
   }
   absl::StrAppend(
       &out, ", \\\n  ", data,
       " using 1:($6==1 ? $2 : 1/0) with points pointtype 6 pointsize 3.2 linewidth 2 "
-      "linecolor rgb 'black' title 'default (IMPLICIT_EULER, linear)'",
+      "linecolor rgb 'black' title 'default: linear, backward Euler'",
       ", \\\n  ", data,
       " using 1:2:(sprintf('n=%d', $5)) with labels offset 1.6,0.7 font ',8' notitle\n");
   return out;
@@ -105,14 +109,15 @@ absl::StatusOr<std::string> RunChartCommand(const std::vector<absl::string_view>
   absl::StatusOr<TemporaryFolder> folder = TemporaryFolder::Create("kerf-chart");
   if (!folder.ok()) return folder.status();
   std::string panels = absl::StrFormat(
-      "set termoption noenhanced\nset logscale xy\nset grid\n"
+      "set termoption noenhanced\nset logscale xy\nset format xy '%g'\nset grid\n"
       "set xlabel 'wall s per simulated s (this machine)'\n"
       "set ylabel 'relative error'\n"
       "set multiplot layout 1,%d title 'kerf: speed against accuracy (bars settled %g s, "
       "mass damping %g/s)'\n",
       experiment.references_size(), experiment.settle_seconds(), experiment.mass_damping());
   for (int i = 0; i < experiment.references_size(); ++i) {
-    absl::StrAppend(&panels, Panel(experiment, experiment.references(i), folder->path(), i == 0));
+    absl::StrAppend(&panels, Panel(experiment, experiment.references(i), folder->path(),
+                                   i + 1 == experiment.references_size()));
   }
   absl::StrAppend(&panels, "unset multiplot\n");
   if ((**out)[0].find('\'') != absl::string_view::npos) {

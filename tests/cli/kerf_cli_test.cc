@@ -295,7 +295,7 @@ TEST(KerfCli, TradeoffExperimentIsChartedWithItsParetoFront) {
                             std::istreambuf_iterator<char>());
   EXPECT_THAT(drawing, HasSubstr("<svg"));
   EXPECT_THAT(drawing, HasSubstr("Pareto front"));
-  EXPECT_THAT(drawing, HasSubstr("default (IMPLICIT_EULER, linear)"));
+  EXPECT_THAT(drawing, HasSubstr("default: linear, backward Euler"));
   EXPECT_THAT(drawing, HasSubstr("twist: displacement of the mid-length corner"));
   std::ifstream png(absl::StrCat(dir, "/tradeoff.png"), std::ios::binary);
   std::string signature(8, '\0');
