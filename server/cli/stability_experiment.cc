@@ -24,6 +24,7 @@ absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOption
   experiment.set_slow_down(options.live_cut.slow_down);
   experiment.set_pose_rate_hz(options.live_cut.pose_rate_hz);
   experiment.set_blow_up_energy_ratio(options.live_cut.blow_up_energy_ratio);
+  experiment.set_max_wall_seconds(options.live_cut.max_wall_seconds);
   std::vector<std::string> scenes = options.scenes;
   if (!options.liver_mesh_path.empty()) scenes.push_back("liver");
   for (const sim::StandardCut& cut : sim::StandardCuts(scenes)) {
@@ -56,21 +57,25 @@ std::string FormatStability(const kerf::v1::StabilityExperiment& experiment) {
   std::string out = absl::StrFormat(
       "stability: each scene settled %g s, then cut progressively along its path %g times "
       "slower than written, %g poses/s; blew up: energy over %g times that at the first pose; "
-      "snapping: not made (off in every row)\n\n"
-      "| scene | path | integration | law | blew up | after (s) | largest energy ratio | "
+      "snapping: not made (off in every row); a row stops after %g s of wall time\n\n"
+      "| scene | path | integration | law | blew up | after (s) | stopped after (s) | largest "
+      "energy ratio | "
       "critical step at the end (us) | step (us) | sub-steps (median, max) | smallest radius "
       "ratio | smallest dihedral (deg) | cut tets | held | dropped | valid | wall s per "
-      "simulated s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "simulated s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       experiment.settle_seconds(), experiment.slow_down(), experiment.pose_rate_hz(),
-      experiment.blow_up_energy_ratio());
+      experiment.blow_up_energy_ratio(), experiment.max_wall_seconds());
   for (const kerf::v1::LiveCutRow& r : experiment.rows()) {
     absl::StrAppendFormat(
         &out,
-        "| %s | %s | %s | %s | %s | %.3f | %.3g | %.3g | %.4g | %u, %u | %.3g | %.3g | %u | %u | "
+        "| %s | %s | %s | %s | %s | %.3f | %s | %.3g | %.3g | %.4g | %u, %u | %.3g | %.3g | %u | "
+        "%u | "
         "%u | %s | %.3g |\n",
         r.scene(), r.path(), r.integration(), r.law(), r.blew_up() ? "YES" : "no",
-        r.blew_up_after(), r.largest_energy_ratio(), 1e6 * r.critical_time_step(),
-        1e6 * r.time_step(), r.sub_steps_median(), r.sub_steps_max(), r.smallest_radius_ratio(),
+        r.blew_up_after(),
+        r.stopped_after() > 0 ? absl::StrFormat("%.3f", r.stopped_after()) : std::string("-"),
+        r.largest_energy_ratio(), 1e6 * r.critical_time_step(), 1e6 * r.time_step(),
+        r.sub_steps_median(), r.sub_steps_max(), r.smallest_radius_ratio(),
         r.smallest_dihedral_deg(), r.cut_tets(), r.held_poses(), r.dropped_hits(),
         r.valid() ? "yes" : "NO", r.wall_seconds_per_simulated_second());
   }

@@ -18,7 +18,8 @@ namespace kerf::cli {
 struct StabilityOptions {
   std::vector<std::string> scenes = {"lattice-tension", "lattice-poor"};
   std::string liver_mesh_path;  // adds the liver when set
-  sim::LiveCutOptions live_cut;
+  // A row stops after 30 s of wall time: at that rate a run is far from real time anyway.
+  sim::LiveCutOptions live_cut = {.max_wall_seconds = 30};
 };
 
 absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOptions& options);

@@ -90,8 +90,13 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
       row.set_blew_up_after(elapsed + pose_period);
       break;
     }
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count() >
+        options.max_wall_seconds) {
+      row.set_stopped_after(elapsed + pose_period);
+      break;
+    }
   }
-  if (!row.blew_up()) {
+  if (!row.blew_up() && row.stopped_after() == 0) {
     if (absl::Status s = sim.WithdrawBlade(); !s.ok()) return s;
   }
   const double wall =

@@ -4,6 +4,7 @@
 // integration blows up and what keeps it stable.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -18,6 +19,9 @@ struct LiveCutOptions {
   double slow_down = 16;      // the path is followed this many times slower than written
   double pose_rate_hz = 1000;
   double blow_up_energy_ratio = 10;  // see kerf.v1.LiveCutRow.blew_up
+  // A run whose poses and steps have taken this long (wall s) stops there (see
+  // kerf.v1.LiveCutRow.stopped_after).
+  double max_wall_seconds = std::numeric_limits<double>::infinity();
 };
 
 // Runs `scene` (explicit or implicit; STATIC is FAILED_PRECONDITION) with the blade along
