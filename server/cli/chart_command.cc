@@ -109,7 +109,7 @@ absl::StatusOr<std::string> RunChartCommand(const std::vector<absl::string_view>
   absl::StatusOr<TemporaryFolder> folder = TemporaryFolder::Create("kerf-chart");
   if (!folder.ok()) return folder.status();
   std::string panels = absl::StrFormat(
-      "set termoption noenhanced\nset logscale xy\nset format xy '%g'\nset grid\n"
+      "set termoption noenhanced\nset logscale xy\nset format xy '%%g'\nset grid\n"
       "set xlabel 'wall s per simulated s (this machine)'\n"
       "set ylabel 'relative error'\n"
       "set multiplot layout 1,%d title 'kerf: speed against accuracy (bars settled %g s, "

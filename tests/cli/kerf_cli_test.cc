@@ -294,6 +294,7 @@ TEST(KerfCli, TradeoffExperimentIsChartedWithItsParetoFront) {
   const std::string drawing((std::istreambuf_iterator<char>(svg)),
                             std::istreambuf_iterator<char>());
   EXPECT_THAT(drawing, HasSubstr("<svg"));
+  EXPECT_THAT(drawing, HasSubstr("kerf: speed against accuracy (bars settled 2 s"));
   EXPECT_THAT(drawing, HasSubstr("Pareto front"));
   EXPECT_THAT(drawing, HasSubstr("default: linear, backward Euler"));
   EXPECT_THAT(drawing, HasSubstr("twist: displacement of the mid-length corner"));
