@@ -1,6 +1,7 @@
 #include "sim/accuracy_bar.h"
 
 #include <Eigen/Geometry>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <numbers>

@@ -1,0 +1,45 @@
+#include "sim/simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "sim/accuracy_bar.h"
+#include "support/status_message.h"
+
+namespace kerf::sim {
+namespace {
+
+using kerf::testing::StatusMessage;
+
+// A start near the answer: the given displacement at rest, held components at their values,
+// and a wrong one refused with nothing changed.
+TEST(Simulation, SetDisplacementStartsThereAtRestAndKeepsHeldValues) {
+  absl::StatusOr<Scene> scene = MakeBarScene(
+      BarLoad::kTension, 2, kerf::v1::Integration::IMPLICIT_EULER, fem::ElasticLaw::kLinear, 0);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  absl::StatusOr<std::unique_ptr<Simulation>> sim = Simulation::Create(*std::move(scene));
+  ASSERT_TRUE(sim.ok()) << sim.status();
+  const std::size_t n = (*sim)->mesh().vertex_index_bound();
+  EXPECT_EQ(StatusMessage((*sim)->SetDisplacement(std::vector<Eigen::Vector3d>(n - 1))),
+            absl::StrCat("a displacement for ", n - 1, " vertices, the mesh has ", n, " slots"));
+  std::vector<Eigen::Vector3d> bad(n, Eigen::Vector3d::Zero());
+  bad[3].y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(StatusMessage((*sim)->SetDisplacement(bad)),
+            "the displacement of vertex 3 is not finite");
+
+  (*sim)->Step();  // moving, then started again
+  ASSERT_TRUE(
+      (*sim)->SetDisplacement(std::vector<Eigen::Vector3d>(n, Eigen::Vector3d(0, 0.001, 0))).ok());
+  for (std::uint32_t i = 0; i < n; ++i) {
+    EXPECT_EQ((*sim)->state().velocity[i], Eigen::Vector3d::Zero());
+    const Eigen::Vector3d& rest = (*sim)->mesh().rest_position(mesh::VertexId{i});
+    const std::optional<Eigen::Vector3d> held = HeldDisplacement(BarLoad::kTension, rest);
+    const Eigen::Vector3d expected = held.value_or(Eigen::Vector3d(0, 0.001, 0));
+    EXPECT_EQ((*sim)->state().displacement[i], expected) << i;
+    EXPECT_EQ((*sim)->mesh().current_position(mesh::VertexId{i}), rest + expected) << i;
+  }
+}
+
+}  // namespace
+}  // namespace kerf::sim
