@@ -1,13 +1,16 @@
 #include "fem/explicit_integrator.h"
 
+#include <cassert>
 #include <cmath>
 #include <random>
 
 namespace kerf::fem {
 
 ExplicitIntegrator::ExplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
-                                       ElasticOptions elastic)
+                                       ElasticOptions elastic, std::optional<SleepOptions> sleep)
     : model_(&model), forces_(model, elastic) {
+  assert(!sleep.has_value() || elastic.law == ElasticLaw::kLinear);
+  if (sleep.has_value()) sleeping_ = std::make_unique<SleepingVertices>(model, *sleep);
   Refresh(bc);
 }
 
@@ -22,6 +25,7 @@ void ExplicitIntegrator::Refresh(const BoundaryConditions& bc) {
   elastic_.resize(n);
   damped_u_.resize(n);
   prescribed_ = bc.prescribed;
+  if (sleeping_ != nullptr) sleeping_->Refresh(bc, external_);
 }
 
 void ExplicitIntegrator::Step(double dt, DynamicState* state) {
@@ -30,15 +34,24 @@ void ExplicitIntegrator::Step(double dt, DynamicState* state) {
   state->velocity.resize(n, Eigen::Vector3d::Zero());
   const double alpha = model_->material().mass_damping;
   const double beta = model_->material().stiffness_damping;
-  const std::span<const std::uint32_t> active = model_->active_vertices();
+  // The vertices that move; sleeping ones are held, with zero velocity.
+  const std::span<const std::uint32_t> active =
+      sleeping_ != nullptr ? sleeping_->awake() : model_->active_vertices();
   forces_.Update(state->displacement);
-  if (beta == 0) {
-    forces_.Force(state->displacement, elastic_);  // no u + beta v to form
-  } else {
+  const std::vector<Eigen::Vector3d>* w = &state->displacement;  // u + beta v
+  if (beta != 0) {
     for (const std::uint32_t i : active) {
       damped_u_[i] = state->displacement[i] + beta * state->velocity[i];
     }
-    forces_.Force(damped_u_, elastic_);
+    w = &damped_u_;
+  }
+  if (sleeping_ == nullptr) {
+    forces_.Force(*w, elastic_);
+  } else {
+    if (beta != 0) {
+      for (const std::uint32_t j : sleeping_->border()) damped_u_[j] = state->displacement[j];
+    }
+    model_->MultiplyStiffnessOver(active, sleeping_->awake_edges(), *w, elastic_);
   }
   const double keep = 1 - dt * alpha;
   for (const std::uint32_t i : active) {
@@ -51,6 +64,7 @@ void ExplicitIntegrator::Step(double dt, DynamicState* state) {
   }
   for (const std::uint32_t i : active) state->displacement[i] += dt * state->velocity[i];
   state->time += dt;
+  if (sleeping_ != nullptr) sleeping_->Update(dt, external_, state);
 }
 
 double EstimateCriticalTimeStep(const TensorMassModel& model) {

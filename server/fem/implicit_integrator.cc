@@ -7,9 +7,12 @@
 
 namespace kerf::fem {
 ImplicitIntegrator::ImplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
-                                       ImplicitSolveOptions options, ElasticOptions elastic)
+                                       ImplicitSolveOptions options, ElasticOptions elastic,
+                                       std::optional<SleepOptions> sleep)
     : model_(&model), options_(options), forces_(model, elastic) {
   assert(options.tolerance > 0 && options.max_iterations > 0);
+  assert(!sleep.has_value() || elastic.law == ElasticLaw::kLinear);
+  if (sleep.has_value()) sleeping_ = std::make_unique<SleepingVertices>(model, *sleep);
   Refresh(bc);
 }
 
@@ -28,6 +31,7 @@ void ImplicitIntegrator::Refresh(const BoundaryConditions& bc) {
   change_.resize(n, Eigen::Vector3d::Zero());
   inverse_diagonal_.resize(n);
   prepared_dt_ = 0;
+  if (sleeping_ != nullptr) sleeping_->Refresh(bc, external_);
 }
 
 void ImplicitIntegrator::PrepareFor(double dt) {
@@ -35,20 +39,36 @@ void ImplicitIntegrator::PrepareFor(double dt) {
   const Material& material = model_->material();
   const double a = 1 + dt * material.mass_damping;
   const double b = dt * material.stiffness_damping + dt * dt;
-  forces_.DiagonalBlocks(inverse_diagonal_);
-  for (const std::uint32_t i : model_->active_vertices()) {
-    const Eigen::Matrix3d block =
-        a * model_->masses()[i] * Eigen::Matrix3d::Identity() + b * inverse_diagonal_[i];
+  if (forces_.rotating()) forces_.DiagonalBlocks(inverse_diagonal_);
+  for (const std::uint32_t i : Moving()) {
+    const Eigen::Matrix3d& k_ii = forces_.rotating()
+                                      ? inverse_diagonal_[i]
+                                      : model_->vertex_tensor(static_cast<mesh::VertexId>(i));
+    const Eigen::Matrix3d block = a * model_->masses()[i] * Eigen::Matrix3d::Identity() + b * k_ii;
     inverse_diagonal_[i] = block.inverse();
   }
   prepared_dt_ = dt;
 }
 
+void ImplicitIntegrator::Force(const std::vector<Eigen::Vector3d>& w,
+                               std::vector<Eigen::Vector3d>* f) const {
+  if (sleeping_ == nullptr) {
+    forces_.Force(w, *f);
+  } else {
+    model_->MultiplyStiffnessOver(sleeping_->awake(), sleeping_->awake_edges(), w, *f);
+  }
+}
+
 double ImplicitIntegrator::MultiplySystem(double a, double b, const std::vector<Eigen::Vector3d>& p,
                                           std::vector<Eigen::Vector3d>* q) {
-  forces_.Multiply(p, stiff_);
+  // Linear in p: the force law's force without its rest-shape term.
+  if (sleeping_ == nullptr) {
+    forces_.Multiply(p, stiff_);
+  } else {
+    Force(p, &stiff_);
+  }
   double pq = 0;
-  for (const std::uint32_t i : model_->active_vertices()) {
+  for (const std::uint32_t i : Moving()) {
     (*q)[i] = ((a * model_->masses()[i]) * p[i] + b * stiff_[i]).cwiseProduct(free_[i]);
     pq += p[i].dot((*q)[i]);
   }
@@ -67,7 +87,14 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
   const double a = 1 + dt * material.mass_damping;
   const double b = dt * material.stiffness_damping + dt * dt;
   std::vector<Eigen::Vector3d>& v = state->velocity;
-  const std::span<const std::uint32_t> active = model_->active_vertices();
+  const std::span<const std::uint32_t> active = Moving();
+  if (sleeping_ != nullptr) {
+    // The awake rows read their sleeping neighbours: held (zero velocity and direction).
+    for (const std::uint32_t j : sleeping_->border()) {
+      product_[j] = state->displacement[j];
+      direction_[j].setZero();
+    }
+  }
 
   // The solve starts from g = S (v + change): its residual, for the new velocity, is
   //   S (M v + dt (f - K u) - A g) = S (M (v - a g) + dt f - dt K (u + (b / dt) g)),
@@ -81,7 +108,7 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
     residual_[i] = model_->masses()[i] * (old - a * v[i]);
     product_[i] = state->displacement[i] + (b / dt) * v[i];
   }
-  forces_.Force(product_, stiff_);
+  Force(product_, &stiff_);
   double scale = 0;
   for (const std::uint32_t i : active) {
     stiff_[i] *= dt;
@@ -131,6 +158,10 @@ void ImplicitIntegrator::Step(double dt, DynamicState* state) {
     state->displacement[mesh::Index(p.vertex)][p.component] = p.value;
   }
   state->time += dt;
+  if (sleeping_ != nullptr) {
+    sleeping_->Update(dt, external_, state);
+    if (sleeping_->changed()) prepared_dt_ = 0;  // woken vertices need their blocks
+  }
 }
 
 }  // namespace kerf::fem

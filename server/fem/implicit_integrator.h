@@ -13,8 +13,12 @@
 // change predicts (v + (v - v_previous)).
 #pragma once
 
+#include <memory>
+#include <optional>
+#include <span>
 #include <vector>
 
+#include "fem/sleeping_vertices.h"
 #include "fem/time_integrator.h"
 
 namespace kerf::fem {
@@ -38,18 +42,32 @@ struct ImplicitSolveReport {
 // Reusable buffers so that a step allocates nothing once the mesh stops growing.
 class ImplicitIntegrator : public TimeIntegrator {
  public:
-  // bc must be valid for the model's mesh (see ValidateBoundaryConditions).
+  // bc must be valid for the model's mesh (see ValidateBoundaryConditions). With `sleep`,
+  // vertices at rest sleep (the linear law only): the solve is for the awake vertices, the
+  // sleeping ones held.
   ImplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
-                     ImplicitSolveOptions options = {}, ElasticOptions elastic = {});
+                     ImplicitSolveOptions options = {}, ElasticOptions elastic = {},
+                     std::optional<SleepOptions> sleep = {});
 
-  // O((active vertices + edges) x iterations).
+  // O((active vertices + edges) x iterations); sleeping, O((awake vertices and their edges)
+  // x iterations).
   void Step(double dt, DynamicState* state) override;
   void Refresh(const BoundaryConditions& bc) override;
   const ElasticForces& elastic_forces() const override { return forces_; }
+  void WakeAll() override {
+    if (sleeping_ != nullptr) sleeping_->WakeAll();
+  }
+  const SleepingVertices* sleeping() const override { return sleeping_.get(); }
 
   const ImplicitSolveReport& last_solve() const { return last_solve_; }
 
  private:
+  // The vertices that move: the active ones, or the awake ones.
+  std::span<const std::uint32_t> Moving() const {
+    return sleeping_ != nullptr ? sleeping_->awake() : model_->active_vertices();
+  }
+  // f = K w (by the law) at the moving vertices.
+  void Force(const std::vector<Eigen::Vector3d>& w, std::vector<Eigen::Vector3d>* f) const;
   // q = S (a M + b K) p, S zeroing the components that do not move; returns p . q.
   double MultiplySystem(double a, double b, const std::vector<Eigen::Vector3d>& p,
                         std::vector<Eigen::Vector3d>* q);
@@ -66,12 +84,15 @@ class ImplicitIntegrator : public TimeIntegrator {
   std::vector<PrescribedDisplacement> prescribed_;
   std::vector<Eigen::Vector3d> free_;  // per component: 1 if it moves, 0 if held or massless
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
-  double prepared_dt_ = 0;  // the dt inverse_diagonal_ is for; 0 after a refresh or rotation
+  // The dt inverse_diagonal_ is for (at the moving vertices); 0 after a refresh, a rotation
+  // or a vertex woken.
+  double prepared_dt_ = 0;
   std::vector<Eigen::Vector3d> residual_, direction_, preconditioned_, product_, stiff_;
   // v' - v of the last step (zero for vertices it did not move): the next solve starts from
   // v + change_.
   std::vector<Eigen::Vector3d> change_;
   ImplicitSolveReport last_solve_;
+  std::unique_ptr<SleepingVertices> sleeping_;
 };
 
 }  // namespace kerf::fem

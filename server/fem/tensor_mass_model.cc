@@ -105,6 +105,7 @@ void TensorMassModel::GrowToMesh() {
   vertex_tensors_.resize(n, Eigen::Matrix3d::Zero());
   masses_.resize(n, 0.0);
   is_active_.resize(n, false);
+  edges_at_.resize(n);
 }
 
 void TensorMassModel::UpdateActive(std::span<const TetId> added,
@@ -157,17 +158,26 @@ void TensorMassModel::Accumulate(TetId t, double sign) {
     const int a = ordered ? i : j, b = ordered ? j : i;
     const std::uint64_t key = EdgeKey(v[a], v[b]);
     auto [it, inserted] = edge_slot_.try_emplace(key, static_cast<std::uint32_t>(edges_.size()));
-    if (inserted) edges_.push_back({v[a], v[b], Eigen::Matrix3d::Zero(), 0});
+    if (inserted) {
+      edges_.push_back({v[a], v[b], Eigen::Matrix3d::Zero(), 0});
+      edges_at_[Index(v[a])].push_back(it->second);
+      edges_at_[Index(v[b])].push_back(it->second);
+    }
     EdgeTensor& edge = edges_[it->second];
     edge.k_ab += stiffness_sign * k.blocks[a][b];
     edge.tets = sign > 0 ? edge.tets + 1 : edge.tets - 1;
     if (edge.tets == 0) {
       // No tet has this edge any more: move the last edge into its slot.
       const std::uint32_t slot = it->second;
+      const auto last = static_cast<std::uint32_t>(edges_.size() - 1);
       edge_slot_.erase(it);
-      if (slot + 1 != edges_.size()) {
+      for (const VertexId end : {v[a], v[b]}) std::erase(edges_at_[Index(end)], slot);
+      if (slot != last) {
         edges_[slot] = edges_.back();
         edge_slot_[EdgeKey(edges_[slot].a, edges_[slot].b)] = slot;
+        for (const VertexId end : {edges_[slot].a, edges_[slot].b}) {
+          std::replace(edges_at_[Index(end)].begin(), edges_at_[Index(end)].end(), last, slot);
+        }
       }
       edges_.pop_back();
     }
@@ -185,6 +195,34 @@ void TensorMassModel::MultiplyStiffness(std::span<const Eigen::Vector3d> u,
   assert(u.size() >= vertex_tensors_.size() && f.size() >= vertex_tensors_.size());
   for (const std::uint32_t i : active_) f[i] = vertex_tensors_[i] * u[i];
   for (const EdgeTensor& e : edges_) {
+    const std::uint32_t a = Index(e.a), b = Index(e.b);
+    const Eigen::Vector3d u_a = u[a], u_b = u[b];
+    f[a] += e.k_ab * u_b;
+    f[b] += e.k_ab.transpose() * u_a;
+  }
+}
+
+void TensorMassModel::MultiplyStiffnessRows(std::span<const std::uint32_t> rows,
+                                            std::span<const Eigen::Vector3d> u,
+                                            std::span<Eigen::Vector3d> f) const {
+  for (const std::uint32_t i : rows) {
+    Eigen::Vector3d sum = vertex_tensors_[i] * u[i];
+    for (const std::uint32_t slot : edges_at_[i]) {
+      const EdgeTensor& e = edges_[slot];
+      sum += Index(e.a) == i ? Eigen::Vector3d(e.k_ab * u[Index(e.b)])
+                             : Eigen::Vector3d(e.k_ab.transpose() * u[Index(e.a)]);
+    }
+    f[i] = sum;
+  }
+}
+
+void TensorMassModel::MultiplyStiffnessOver(std::span<const std::uint32_t> rows,
+                                            std::span<const std::uint32_t> edges,
+                                            std::span<const Eigen::Vector3d> u,
+                                            std::span<Eigen::Vector3d> f) const {
+  for (const std::uint32_t i : rows) f[i] = vertex_tensors_[i] * u[i];
+  for (const std::uint32_t slot : edges) {
+    const EdgeTensor& e = edges_[slot];
     const std::uint32_t a = Index(e.a), b = Index(e.b);
     const Eigen::Vector3d u_a = u[a], u_b = u[b];
     f[a] += e.k_ab * u_b;

@@ -70,6 +70,18 @@ class TensorMassModel {
   // are written (K has nothing elsewhere); the others are left as they were. The elastic force
   // the body exerts on its vertices is -f. O(active vertices + edges).
   void MultiplyStiffness(std::span<const Eigen::Vector3d> u, std::span<Eigen::Vector3d> f) const;
+  // The same product for the rows of `rows` (vertex indices) only: f_i for i in rows, from u
+  // at i and its neighbours; nothing else read or written. O(rows x their edges).
+  void MultiplyStiffnessRows(std::span<const std::uint32_t> rows,
+                             std::span<const Eigen::Vector3d> u,
+                             std::span<Eigen::Vector3d> f) const;
+  // The same rows edge by edge, as MultiplyStiffness (faster for many rows): `edges` (indices
+  // into edges()) must hold every edge at a row once. The other end of a listed edge that is
+  // not a row also receives its share (scratch). O(rows + edges listed).
+  void MultiplyStiffnessOver(std::span<const std::uint32_t> rows,
+                             std::span<const std::uint32_t> edges,
+                             std::span<const Eigen::Vector3d> u,
+                             std::span<Eigen::Vector3d> f) const;
 
   // The global 3n x 3n stiffness assembled from the tensors, n = vertex_index_bound().
   Eigen::SparseMatrix<double> AssembleStiffness() const;
@@ -95,6 +107,8 @@ class TensorMassModel {
   std::span<const std::uint32_t> active_vertices() const { return active_; }
   // The tensor of the edge between a and b, or nullptr if no tet has that edge.
   const EdgeTensor* FindEdge(mesh::VertexId a, mesh::VertexId b) const;
+  // The edges at vertex index i, as indices into edges().
+  std::span<const std::uint32_t> edges_at(std::uint32_t i) const { return edges_at_[i]; }
 
  private:
   TensorMassModel(const mesh::TetMesh& mesh, const Material& material);
@@ -117,6 +131,7 @@ class TensorMassModel {
   std::vector<std::uint32_t> active_;
   std::vector<bool> is_active_;                                  // by vertex index
   absl::flat_hash_map<std::uint64_t, std::uint32_t> edge_slot_;  // edge key -> index in edges_
+  std::vector<std::vector<std::uint32_t>> edges_at_;             // by vertex index
   // The rest corners each live tet was added with (by tet index), to take it away exactly
   // after its vertices moved.
   std::vector<std::array<Eigen::Vector3d, 4>> added_with_;

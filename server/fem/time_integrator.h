@@ -28,6 +28,8 @@ double MechanicalEnergy(const TensorMassModel& model, const DynamicState& state,
 // Integrates M a = f_external - K u - C v for a TensorMassModel, with lumped mass and Rayleigh
 // damping C = alpha M + beta K. Prescribed components keep their values and zero velocity;
 // vertices with no mass (used by no tet) do not move.
+class SleepingVertices;
+
 class TimeIntegrator {
  public:
   virtual ~TimeIntegrator() = default;
@@ -38,6 +40,10 @@ class TimeIntegrator {
   virtual void Refresh(const BoundaryConditions& bc) = 0;
   // The force law it steps, with the rotations of its last step.
   virtual const ElasticForces& elastic_forces() const = 0;
+  // The state was set from outside: every vertex moves again.
+  virtual void WakeAll() {}
+  // The vertices it lets sleep (see fem::SleepingVertices), or null if every vertex moves.
+  virtual const SleepingVertices* sleeping() const { return nullptr; }
 };
 
 }  // namespace kerf::fem

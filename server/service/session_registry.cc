@@ -88,6 +88,12 @@ absl::StatusOr<CreatedSession> SessionRegistry::Create(
   spec->mutable_integration()->set_method(scene->method);
   spec->mutable_elasticity()->set_model(sim::ElasticityModelOf(scene->elastic.law));
   spec->mutable_elasticity()->set_auto_strain(scene->elastic.auto_strain);
+  if (scene->sleep.has_value()) {
+    kerf::v1::Sleeping* sleeping = spec->mutable_integration()->mutable_sleeping();
+    sleeping->set_rest_speed(scene->sleep->rest_speed);
+    sleeping->set_wake_acceleration(scene->sleep->wake_acceleration);
+    sleeping->set_quiet_time(scene->sleep->quiet_time);
+  }
   SessionOptions session_options = options_.session;
   if (request.physics_rate_hz() != 0) session_options.physics_rate_hz = request.physics_rate_hz();
   if (request.frame_rate_hz() != 0) session_options.frame_rate_hz = request.frame_rate_hz();

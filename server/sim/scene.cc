@@ -131,6 +131,27 @@ kerf::v1::Elasticity::Model ElasticityModelOf(fem::ElasticLaw law) {
 
 namespace {
 
+absl::StatusOr<fem::SleepOptions> BuildSleepOptions(const kerf::v1::Sleeping& spec) {
+  fem::SleepOptions sleep;
+  if (spec.has_rest_speed()) sleep.rest_speed = spec.rest_speed();
+  if (spec.has_wake_acceleration()) sleep.wake_acceleration = spec.wake_acceleration();
+  if (spec.has_quiet_time()) sleep.quiet_time = spec.quiet_time();
+  if (!(std::isfinite(sleep.rest_speed) && sleep.rest_speed >= 0)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "integration.sleeping.rest_speed must be a speed >= 0 (m/s), got ", sleep.rest_speed));
+  }
+  if (!(std::isfinite(sleep.wake_acceleration) && sleep.wake_acceleration > 0)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("integration.sleeping.wake_acceleration must be positive (m/s^2), got ",
+                     sleep.wake_acceleration));
+  }
+  if (!(std::isfinite(sleep.quiet_time) && sleep.quiet_time >= 0)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "integration.sleeping.quiet_time must be a time >= 0 (s), got ", sleep.quiet_time));
+  }
+  return sleep;
+}
+
 absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_dir) {
   absl::StatusOr<mesh::TetMesh> mesh = BuildMesh(spec.mesh(), base_dir);
   if (!mesh.ok()) return mesh.status();
@@ -190,6 +211,21 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
       scene.elastic.law != fem::ElasticLaw::kLinear) {
     return absl::InvalidArgumentError(
         "elasticity.model must be LINEAR for a STATIC scene (the static solve is linear)");
+  }
+  if (spec.integration().has_sleeping()) {
+    absl::StatusOr<fem::SleepOptions> sleep = BuildSleepOptions(spec.integration().sleeping());
+    if (!sleep.ok()) return sleep.status();
+    if (scene.method != kerf::v1::Integration::SYMPLECTIC_EULER &&
+        scene.method != kerf::v1::Integration::IMPLICIT_EULER) {
+      return absl::InvalidArgumentError(
+          "integration.sleeping needs integration.method SYMPLECTIC_EULER or IMPLICIT_EULER");
+    }
+    if (scene.elastic.law != fem::ElasticLaw::kLinear) {
+      return absl::InvalidArgumentError(
+          "integration.sleeping needs elasticity.model LINEAR (a rotating law turns every tet "
+          "each step)");
+    }
+    scene.sleep = *sleep;
   }
   if (!std::isfinite(scene.time_step) || scene.time_step < 0) {
     return absl::InvalidArgumentError(absl::StrCat(

@@ -3,6 +3,7 @@
 // prescriptions and loads.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "fem/boundary_conditions.h"
 #include "fem/elastic_forces.h"
 #include "fem/material.h"
+#include "fem/sleeping_vertices.h"
 #include "kerf/v1/scene.pb.h"
 #include "mesh/tet_mesh.h"
 
@@ -28,6 +30,7 @@ struct Scene {
   kerf::v1::Cutting::Mode cut_mode = kerf::v1::Cutting::PROGRESSIVE;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // see kerf.v1.Cutting
   fem::ElasticOptions elastic;                                    // see kerf.v1.Elasticity
+  std::optional<fem::SleepOptions> sleep;  // set: vertices at rest sleep (kerf.v1.Sleeping)
 };
 
 // The law a scene's elasticity names (MODEL_UNSPECIFIED: linear), and back.

@@ -35,7 +35,8 @@ absl::StatusOr<std::unique_ptr<Simulation>> Simulation::Create(Scene scene) {
   } else if (sim->implicit()) {
     auto implicit = std::make_unique<fem::ImplicitIntegrator>(
         *sim->model_, sim->scene_.conditions,
-        fem::ImplicitSolveOptions{.tolerance = kImplicitTolerance}, sim->scene_.elastic);
+        fem::ImplicitSolveOptions{.tolerance = kImplicitTolerance}, sim->scene_.elastic,
+        sim->scene_.sleep);
     sim->implicit_ = implicit.get();
     sim->integrator_ = std::move(implicit);
   } else if (substepped) {
@@ -45,7 +46,7 @@ absl::StatusOr<std::unique_ptr<Simulation>> Simulation::Create(Scene scene) {
     sim->integrator_ = std::move(substeps);
   } else {
     sim->integrator_ = std::make_unique<fem::ExplicitIntegrator>(
-        *sim->model_, sim->scene_.conditions, sim->scene_.elastic);
+        *sim->model_, sim->scene_.conditions, sim->scene_.elastic, sim->scene_.sleep);
   }
   sim->UpdateCurrentPositions();
   return sim;
@@ -100,6 +101,7 @@ absl::Status Simulation::SetDisplacement(std::vector<Eigen::Vector3d> u) {
   }
   state_.displacement = std::move(u);
   std::fill(state_.velocity.begin(), state_.velocity.end(), Eigen::Vector3d::Zero());
+  if (integrator_ != nullptr) integrator_->WakeAll();
   UpdateCurrentPositions();
   return absl::OkStatus();
 }

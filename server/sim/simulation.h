@@ -60,6 +60,10 @@ class Simulation {
   double MechanicalEnergy() const {
     return fem::MechanicalEnergy(*model_, state_, elastic_forces());
   }
+  // The vertices that sleep (a scene with integration.sleeping), or null.
+  const fem::SleepingVertices* sleeping() const {
+    return integrator_ != nullptr ? integrator_->sleeping() : nullptr;
+  }
   // Sub-steps of the last step (SYMPLECTIC_EULER_SUBSTEPPED; 0 otherwise).
   int last_sub_steps() const { return substepped_ != nullptr ? substepped_->last_sub_steps() : 0; }
   // 2 / omega_max of the model as built (see fem::EstimateCriticalTimeStep).

@@ -125,6 +125,42 @@ TEST(TensorMassModel, LumpedMassIsDensityTimesVolume) {
   EXPECT_GT(model.mass(VertexId{0}), 0);
 }
 
+// Each edge is listed at both its ends and nowhere else, and the product row by row (every
+// other active vertex) is the whole product's rows, the others left as they were.
+void ExpectRowsMatchTheProduct(const TensorMassModel& model) {
+  std::size_t listed = 0;
+  for (std::uint32_t i = 0; i < model.vertex_count(); ++i) {
+    for (const std::uint32_t slot : model.edges_at(i)) {
+      ASSERT_LT(slot, model.edges().size());
+      const EdgeTensor& e = model.edges()[slot];
+      EXPECT_TRUE(Index(e.a) == i || Index(e.b) == i) << i;
+      ++listed;
+    }
+  }
+  EXPECT_EQ(listed, 2 * model.edges().size());
+  const std::vector<Eigen::Vector3d> u = RandomField(model.vertex_count(), 9);
+  std::vector<Eigen::Vector3d> whole(u.size(), Eigen::Vector3d::Zero());
+  model.MultiplyStiffness(u, whole);
+  std::vector<std::uint32_t> rows;
+  for (std::size_t k = 0; k < model.active_vertices().size(); k += 2) {
+    rows.push_back(model.active_vertices()[k]);
+  }
+  const Eigen::Vector3d untouched(7, 7, 7);
+  std::vector<Eigen::Vector3d> by_rows(u.size(), untouched);
+  model.MultiplyStiffnessRows(rows, u, by_rows);
+  double scale = 0;
+  for (const Eigen::Vector3d& f : whole) scale = std::max(scale, f.norm());
+  std::vector<bool> in_rows(u.size(), false);
+  for (const std::uint32_t i : rows) in_rows[i] = true;
+  for (std::uint32_t i = 0; i < u.size(); ++i) {
+    if (in_rows[i]) {
+      EXPECT_LE((by_rows[i] - whole[i]).norm(), 1e-12 * scale) << i;
+    } else {
+      EXPECT_EQ(by_rows[i], untouched) << i;
+    }
+  }
+}
+
 void ExpectModelsEqual(const TensorMassModel& a, const TensorMassModel& b) {
   ASSERT_EQ(a.vertex_count(), b.vertex_count());
   double scale = 0;
@@ -146,6 +182,7 @@ void ExpectModelsEqual(const TensorMassModel& a, const TensorMassModel& b) {
   }
   EXPECT_EQ(std::vector<std::uint32_t>(a.active_vertices().begin(), a.active_vertices().end()),
             std::vector<std::uint32_t>(b.active_vertices().begin(), b.active_vertices().end()));
+  ExpectRowsMatchTheProduct(a);
 }
 
 TEST(TensorMassModel, IncrementalChangesEqualARebuildFromScratch) {

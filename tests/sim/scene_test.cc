@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "absl/strings/str_replace.h"
+#include "fem/static_solver.h"
 #include "sim/simulation.h"
 #include "support/find_vertex.h"
 #include "support/status_message.h"
@@ -88,6 +89,21 @@ TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
       {Tension() + "elasticity { model: COROTATIONAL }\nintegration { method: STATIC }\n",
        "scene 'lattice-tension': elasticity.model must be LINEAR for a STATIC scene (the static "
        "solve is linear)"},
+      {Tension() + "integration { sleeping { wake_acceleration: 0 } }\n",
+       "scene 'lattice-tension': integration.sleeping.wake_acceleration must be positive "
+       "(m/s^2), got 0"},
+      {Tension() + "integration { sleeping { rest_speed: -1 } }\n",
+       "scene 'lattice-tension': integration.sleeping.rest_speed must be a speed >= 0 (m/s), got "
+       "-1"},
+      {Tension() + "integration { sleeping { quiet_time: nan } }\n",
+       "scene 'lattice-tension': integration.sleeping.quiet_time must be a time >= 0 (s), got "
+       "nan"},
+      {Tension() + "integration { method: SYMPLECTIC_EULER_SUBSTEPPED sleeping { } }\n",
+       "scene 'lattice-tension': integration.sleeping needs integration.method SYMPLECTIC_EULER "
+       "or IMPLICIT_EULER"},
+      {Tension() + "elasticity { model: AUTO }\nintegration { sleeping { } }\n",
+       "scene 'lattice-tension': integration.sleeping needs elasticity.model LINEAR (a rotating "
+       "law turns every tet each step)"},
       {Tension() + "integration { method: 9 }\n",
        "scene 'lattice-tension': integration.method must be SYMPLECTIC_EULER, "
        "SYMPLECTIC_EULER_SUBSTEPPED, IMPLICIT_EULER or STATIC, got 9"},
@@ -119,6 +135,25 @@ TEST(BuildScene, AProgressiveSceneIntegratesImplicitlyUnlessItSaysOtherwise) {
   EXPECT_EQ(method_of("cutting { mode: DEFERRED }\n"), kerf::v1::Integration::SYMPLECTIC_EULER);
   EXPECT_EQ(method_of("cutting { mode: DEFERRED }\nintegration { method: IMPLICIT_EULER }\n"),
             kerf::v1::Integration::IMPLICIT_EULER);
+}
+
+// A sleeping scene's simulation lets its vertices sleep; setting its state wakes them all.
+TEST(Simulation, ASleepingSceneSleepsAtRestAndWakesWhenItsStateIsSet) {
+  Scene scene = *BuildScene(
+      *ParseSceneText(Tension() + "integration { sleeping { quiet_time: 0.002 } }\n", "s"), ".");
+  ASSERT_TRUE(scene.sleep.has_value());
+  EXPECT_EQ(scene.sleep->quiet_time, 0.002);
+  EXPECT_EQ(scene.sleep->rest_speed, fem::SleepOptions{}.rest_speed);
+  std::unique_ptr<Simulation> s = *Simulation::Create(std::move(scene));
+  ASSERT_NE(s->sleeping(), nullptr);
+  const std::vector<Eigen::Vector3d> settled =
+      *fem::SolveStaticEquilibrium(s->model(), s->scene().conditions);
+  ASSERT_TRUE(s->SetDisplacement(settled).ok());
+  for (int i = 0; i < 5; ++i) s->Step();
+  EXPECT_TRUE(s->sleeping()->awake().empty());
+  ASSERT_TRUE(s->SetDisplacement(settled).ok());
+  EXPECT_EQ(s->sleeping()->awake().size(), s->model().active_vertices().size());
+  EXPECT_EQ((*Simulation::Create(*LoadScene("lattice-tension")))->sleeping(), nullptr);
 }
 
 // Backward Euler at its automatic step (1 ms) settles where the static solve puts the bar.
