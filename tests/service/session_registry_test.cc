@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "cut/cutter.h"
 #include "service/journal_file.h"
+#include "sim/scene.h"
 
 namespace kerf::service {
 namespace {
@@ -86,6 +87,32 @@ TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsCho
   ASSERT_TRUE(scene.cutting().has_min_temporary_height());
   EXPECT_EQ(scene.cutting().min_temporary_height(), cut::kDefaultMinTemporaryHeight);
   EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::IMPLICIT_EULER);
+}
+
+// A sleeping scene's journal names the thresholds it slept by, the defaults included.
+TEST_F(SessionRegistryJournalTest, AJournalRecordsTheSleepingThresholds) {
+  kerf::v1::CreateSessionRequest request;
+  *request.mutable_scene() =
+      *sim::ParseSceneText(*sim::EmbeddedSceneText("lattice-tension") +
+                               "integration { sleeping { wake_acceleration: 0.01 } }\n",
+                           "sleeping");
+  std::string id;
+  {
+    SessionRegistry registry(Options());
+    absl::StatusOr<CreatedSession> created = registry.Create(request);
+    ASSERT_TRUE(created.ok()) << created.status();
+    id = created->session->id();
+    registry.CloseAll(absl::UnavailableError("shutting down"));
+  }
+  const absl::StatusOr<JournalContents> journal = ReadJournal(JournalOf(id));
+  ASSERT_TRUE(journal.ok()) << journal.status();
+  ASSERT_GE(journal->records.size(), 1u);
+  const kerf::v1::Sleeping& sleeping = journal->records[0].start().scene().integration().sleeping();
+  EXPECT_EQ(sleeping.wake_acceleration(), 0.01);
+  ASSERT_TRUE(sleeping.has_rest_speed());
+  EXPECT_EQ(sleeping.rest_speed(), fem::SleepOptions{}.rest_speed);
+  ASSERT_TRUE(sleeping.has_quiet_time());
+  EXPECT_EQ(sleeping.quiet_time(), fem::SleepOptions{}.quiet_time);
 }
 
 TEST_F(SessionRegistryJournalTest, ASessionClosedByItsClientIsKeptButNotRestored) {
