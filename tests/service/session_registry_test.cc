@@ -31,6 +31,23 @@ class SessionRegistryJournalTest : public ::testing::Test {
   std::string JournalOf(const std::string& id) const {
     return absl::StrCat(dir_, "/", id, ".journal");
   }
+  // The scene the journal of a session made by `request` (and shut down with the server)
+  // starts with; fails the test if there is none.
+  kerf::v1::Scene JournaledScene(const kerf::v1::CreateSessionRequest& request) const {
+    std::string id;
+    {
+      SessionRegistry registry(Options());
+      absl::StatusOr<CreatedSession> created = registry.Create(request);
+      EXPECT_TRUE(created.ok()) << created.status();
+      if (!created.ok()) return {};
+      id = created->session->id();
+      registry.CloseAll(absl::UnavailableError("shutting down"));
+    }
+    const absl::StatusOr<JournalContents> journal = ReadJournal(JournalOf(id));
+    EXPECT_TRUE(journal.ok()) << journal.status();
+    if (!journal.ok() || journal->records.empty()) return {};
+    return journal->records[0].start().scene();
+  }
 
   std::string dir_;
 };
@@ -71,18 +88,7 @@ TEST_F(SessionRegistryJournalTest, ASessionLeftOpenIsRestoredWithItsTokens) {
 // A journal names the cut mode, height guard and method its session ran with, even where the scene
 // left them to the defaults, so that it replays alike if the defaults change.
 TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsChose) {
-  std::string id;
-  {
-    SessionRegistry registry(Options());
-    absl::StatusOr<CreatedSession> created = registry.Create({});  // the default scene
-    ASSERT_TRUE(created.ok()) << created.status();
-    id = created->session->id();
-    registry.CloseAll(absl::UnavailableError("shutting down"));
-  }
-  const absl::StatusOr<JournalContents> journal = ReadJournal(JournalOf(id));
-  ASSERT_TRUE(journal.ok()) << journal.status();
-  ASSERT_GE(journal->records.size(), 1u);
-  const kerf::v1::Scene& scene = journal->records[0].start().scene();
+  const kerf::v1::Scene scene = JournaledScene({});  // the default scene
   EXPECT_EQ(scene.cutting().mode(), kerf::v1::Cutting::PROGRESSIVE);
   ASSERT_TRUE(scene.cutting().has_min_temporary_height());
   EXPECT_EQ(scene.cutting().min_temporary_height(), cut::kDefaultMinTemporaryHeight);
@@ -96,18 +102,7 @@ TEST_F(SessionRegistryJournalTest, AJournalRecordsTheSleepingThresholds) {
       *sim::ParseSceneText(*sim::EmbeddedSceneText("lattice-tension") +
                                "integration { sleeping { wake_acceleration: 0.01 } }\n",
                            "sleeping");
-  std::string id;
-  {
-    SessionRegistry registry(Options());
-    absl::StatusOr<CreatedSession> created = registry.Create(request);
-    ASSERT_TRUE(created.ok()) << created.status();
-    id = created->session->id();
-    registry.CloseAll(absl::UnavailableError("shutting down"));
-  }
-  const absl::StatusOr<JournalContents> journal = ReadJournal(JournalOf(id));
-  ASSERT_TRUE(journal.ok()) << journal.status();
-  ASSERT_GE(journal->records.size(), 1u);
-  const kerf::v1::Sleeping& sleeping = journal->records[0].start().scene().integration().sleeping();
+  const kerf::v1::Sleeping sleeping = JournaledScene(request).integration().sleeping();
   EXPECT_EQ(sleeping.wake_acceleration(), 0.01);
   ASSERT_TRUE(sleeping.has_rest_speed());
   EXPECT_EQ(sleeping.rest_speed(), fem::SleepOptions{}.rest_speed);
