@@ -27,7 +27,7 @@ namespace {
 
 constexpr absl::string_view kUsage =
     "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] "
-    "[--min-temporary-height F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
+    "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
 // The mesh of a scene (an embedded name or a .textproto file) in its initial state, or of a
 // mesh file.
@@ -91,7 +91,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   absl::StatusOr<cut::Cutter> cutter =
       cut::Cutter::Create(m, mesh::MeanEdgeLength(*m),
                           LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()),
-                          options.mode, options.min_temporary_height);
+                          options.mode, options.min_temporary_height, options.snap_fraction);
   if (!cutter.ok()) return cutter.status();
   std::FILE* trace = nullptr;
   if (!options.trace_path.empty()) {
@@ -202,6 +202,10 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_case_v(static_cast<std::uint32_t>(s.tets_by_case[5]));
   report.set_dropped_hits(static_cast<std::uint32_t>(s.dropped_hits));
   report.set_degenerate_hits(static_cast<std::uint32_t>(s.degenerate_hits));
+  report.set_snap_fraction(options.snap_fraction);
+  report.set_snapped_vertices(static_cast<std::uint32_t>(s.snapped_vertices));
+  report.set_snapped_hits(static_cast<std::uint32_t>(s.snapped_hits));
+  report.set_unsnapped_vertices(static_cast<std::uint32_t>(s.unsnapped_vertices));
   double min_angle = 0;
   std::uint32_t slivers = 0;
   bool any = false;
@@ -232,13 +236,15 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
         absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
   }
   if (deferred) options.mode = cut::CutMode::kDeferred;
-  absl::StatusOr<std::optional<std::vector<absl::string_view>>> least_arg =
-      rest.TakeOption("--min-temporary-height", 1);
-  if (!least_arg.ok()) return least_arg.status();
-  if (least_arg->has_value()) {
-    absl::StatusOr<double> least = ParseDoubleArg((**least_arg)[0], "--min-temporary-height");
-    if (!least.ok()) return least.status();
-    options.min_temporary_height = *least;
+  for (auto [flag, into] : {std::pair<absl::string_view, double*>{"--min-temporary-height",
+                                                                  &options.min_temporary_height},
+                            {"--snap", &options.snap_fraction}}) {
+    absl::StatusOr<std::optional<std::vector<absl::string_view>>> value = rest.TakeOption(flag, 1);
+    if (!value.ok()) return value.status();
+    if (!value->has_value()) continue;
+    absl::StatusOr<double> parsed = ParseDoubleArg((**value)[0], flag);
+    if (!parsed.ok()) return parsed.status();
+    *into = *parsed;
   }
   for (auto [flag, into] :
        {std::pair<absl::string_view, std::string*>{"--trace", &options.trace_path},

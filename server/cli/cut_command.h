@@ -24,6 +24,7 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
 struct CutOptions {
   cut::CutMode mode = cut::CutMode::kProgressive;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // progressive: see the cutter
+  double snap_fraction = cut::kDefaultSnapFraction;               // deferred: see the cutter
   // Non-empty: the cut mesh as VTU (current positions as points; the arrays rest_position,
   // source_vertex and source_tet).
   std::string out_path;

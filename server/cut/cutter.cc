@@ -6,6 +6,7 @@
 #include <cassert>
 #include <functional>
 #include <numeric>
+#include <tuple>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
@@ -126,14 +127,23 @@ int ProgressiveCase(int edges, int faces, int temporary_faces, bool tip_inside,
 
 absl::StatusOr<Cutter> Cutter::Create(mesh::TetMesh* mesh, double cell_size,
                                       const BladeLimits& limits, CutMode mode,
-                                      double min_temporary_height) {
+                                      double min_temporary_height, double snap_fraction) {
   if (!(min_temporary_height >= 0 && min_temporary_height < 1)) {
     return absl::InvalidArgumentError(absl::StrCat(
         "the least temporary height must be a fraction in [0, 1), got ", min_temporary_height));
   }
+  if (!(snap_fraction >= 0 && snap_fraction < 0.5)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("the snap fraction must be in [0, 0.5), got ", snap_fraction));
+  }
+  if (snap_fraction > 0 && mode != CutMode::kDeferred) {
+    return absl::InvalidArgumentError(
+        "snapping is made for deferred cutting only (progressive cutting does not snap yet)");
+  }
   absl::StatusOr<TetGrid> grid = TetGrid::Build(*mesh, cell_size, 0.25 * cell_size);
   if (!grid.ok()) return grid.status();
-  return Cutter(mesh, *std::move(grid), cell_size, limits, mode, min_temporary_height);
+  return Cutter(mesh, *std::move(grid), cell_size, limits, mode, min_temporary_height,
+                snap_fraction);
 }
 
 absl::Status Cutter::ApplyPose(const BladePose& pose) {
@@ -255,6 +265,7 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
   high.array() += farthest;
   absl::flat_hash_set<EdgeKey> tested_edges;
   absl::flat_hash_set<FaceKey, FaceKeyHash> tested_faces;
+  std::vector<Crossing> crossings;
   std::vector<EdgeKey> new_edges;
   std::vector<FaceKey> new_faces;
   // The grid lists the tets in the cells the swept surface's box covers; keep those whose own
@@ -276,7 +287,10 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
     const mesh::TetVertices v = mesh_->tet_even_if_removed(t);
     for (const auto& [i, j] : mesh::kTetEdges) {
       const EdgeKey key = MakeEdgeKey(v[i], v[j]);
-      if (edge_hits_.contains(key) || !tested_edges.insert(key).second) continue;
+      const auto hit = edge_hits_.find(key);
+      if ((hit != edge_hits_.end() && hit->second.crossed) || !tested_edges.insert(key).second) {
+        continue;
+      }
       const VertexId lo = Index(v[i]) < Index(v[j]) ? v[i] : v[j];
       const VertexId hi = lo == v[i] ? v[j] : v[i];
       std::optional<double> fraction;
@@ -288,15 +302,7 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
                  kDegenerate * (mesh_->current_position(hi) - mesh_->current_position(lo)).norm()) {
         fraction = c.t;  // the blade stops on the edge (short of it by rounding only)
       }
-      if (!fraction) continue;
-      if (*fraction < kDegenerate || *fraction > 1 - kDegenerate) {
-        ++statistics_.degenerate_hits;
-      } else if (const std::array<VertexId, 2> ends = {lo, hi}; !Realisable(ends)) {
-        ++statistics_.unrealisable_hits;
-      } else {
-        edge_hits_[key] = {*fraction};
-        new_edges.push_back(key);
-      }
+      if (fraction) crossings.push_back({key, lo, hi, *fraction});
     }
     for (const auto& face : mesh::kTetFaces) {
       const FaceKey key = MakeFaceKey(v, face);
@@ -314,6 +320,15 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
       }
     }
   }
+  // The swept surface's normal (its diagonals' cross product), to tell the sides of a snapped
+  // vertex; zero where the blade barely moved (then nothing snaps).
+  Eigen::Vector3d normal = (to.heel - from.tip).cross(to.tip - from.heel);
+  if (normal.norm() <= 1e-6 * (to.heel - to.tip).squaredNorm()) {
+    normal.setZero();
+  } else {
+    normal.normalize();
+  }
+  RecordEdgeCrossings(crossings, normal, &new_edges);
   for (const EdgeKey key : new_edges) {
     const std::array<VertexId, 2> ends = {VertexId(static_cast<std::uint32_t>(key >> 32)),
                                           VertexId(static_cast<std::uint32_t>(key))};
@@ -331,6 +346,198 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
     }
   }
   return near;
+}
+
+void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
+                                 const Eigen::Vector3d& normal, std::vector<EdgeKey>* new_edges) {
+  const auto far_side = [&](VertexId v, VertexId other) {
+    return (mesh_->current_position(other) - mesh_->current_position(v)).dot(snapped_.at(v).far) >
+           0;
+  };
+  if (snap_fraction_ > 0 && normal != Eigen::Vector3d::Zero()) {
+    absl::flat_hash_map<VertexId, Eigen::Vector3d> to_snap;
+    for (const Crossing& c : crossings) {
+      const Eigen::Vector3d& low = mesh_->current_position(c.low);
+      const Eigen::Vector3d& high = mesh_->current_position(c.high);
+      const Eigen::Vector3d point = low + c.fraction * (high - low);
+      const double length = (high - low).norm();
+      // Signed distances of the ends from the swept surface (its plane at the crossing).
+      const double low_side = (low - point).dot(normal), high_side = (high - point).dot(normal);
+      // An edge along the surface (both ends near it) puts both ends on the crack.
+      const bool along =
+          std::max(std::abs(low_side), std::abs(high_side)) < snap_fraction_ * length;
+      for (const auto& [end, from_end, side] : {std::tuple{c.low, c.fraction, low_side},
+                                                std::tuple{c.high, 1 - c.fraction, high_side}}) {
+        if (!(along || from_end < snap_fraction_) || snapped_.contains(end) ||
+            was_snapped_.contains(end)) {
+          continue;
+        }
+        // The copy takes the side the vertex is not on; a vertex on the surface itself keeps
+        // the side the normal points away from (the same for every vertex of the pose).
+        to_snap.try_emplace(end, std::abs(side) < kDegenerate * length || side < 0
+                                     ? normal
+                                     : Eigen::Vector3d(-normal));
+      }
+    }
+    Snap(to_snap);
+  }
+  for (const Crossing& c : crossings) {
+    if (const auto hit = edge_hits_.find(c.key); hit != edge_hits_.end()) {
+      hit->second.fraction = c.fraction;  // cut at its snapped vertex, and now crossed
+      hit->second.crossed = true;
+      continue;
+    }
+    const bool low_snapped = snapped_.contains(c.low), high_snapped = snapped_.contains(c.high);
+    if (low_snapped && high_snapped) continue;  // the edge lies along the crack
+    if (low_snapped || high_snapped) {
+      const VertexId at = low_snapped ? c.low : c.high, other = low_snapped ? c.high : c.low;
+      const double from_at = low_snapped ? c.fraction : 1 - c.fraction;
+      if (far_side(at, other)) {
+        edge_hits_[c.key] = {.fraction = c.fraction, .at = at};
+        ++statistics_.snapped_hits;
+        new_edges->push_back(c.key);
+        continue;
+      }
+      if (from_at < kDegenerate) continue;  // it touches the crack at the vertex, on its side
+      Unsnap(at);  // crossed on the vertex's own side: the crack bends there; no snapping
+    }
+    if (c.fraction < kDegenerate || c.fraction > 1 - kDegenerate) {
+      ++statistics_.degenerate_hits;
+    } else if (const std::array<VertexId, 2> ends = {c.low, c.high}; !Realisable(ends)) {
+      ++statistics_.unrealisable_hits;
+    } else {
+      edge_hits_[c.key] = {c.fraction};
+      new_edges->push_back(c.key);
+    }
+  }
+}
+
+void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap) {
+  assert(mode_ == CutMode::kDeferred);
+  const auto on_crack = [&](VertexId v) { return snapped_.contains(v) || to_snap.contains(v); };
+  // Every edge from a snapped vertex to the far side is cut at it, and one between two lies
+  // along the crack. A hit waiting on an edge to its own side keeps a vertex off the crack.
+  std::vector<VertexId> snapping;
+  for (const auto& [v, far] : to_snap) {
+    bool own_side_hit = false;
+    for (const TetId t : mesh_->TetsAround(v)) {
+      for (const VertexId other : mesh_->tet(t)) {
+        if (other == v || on_crack(other) || !edge_hits_.contains(MakeEdgeKey(v, other))) continue;
+        own_side_hit |= (mesh_->current_position(other) - mesh_->current_position(v)).dot(far) <= 0;
+      }
+    }
+    if (!own_side_hit) snapping.push_back(v);
+  }
+  std::sort(snapping.begin(), snapping.end());  // deterministic order
+  for (const VertexId v : snapping) {
+    snapped_.emplace(v, SnappedVertex{.copy = kNoVertex, .far = to_snap.at(v)});
+  }
+  statistics_.snapped_vertices += snapping.size();
+  for (const VertexId v : snapping) {
+    const std::vector<TetId> around(mesh_->TetsAround(v).begin(), mesh_->TetsAround(v).end());
+    for (const TetId t : around) {
+      for (const VertexId other : mesh_->tet(t)) {
+        if (other == v) continue;
+        const EdgeKey key = MakeEdgeKey(v, other);
+        const auto it = edge_hits_.find(key);
+        if (const auto o = snapped_.find(other); o != snapped_.end()) {
+          // Along the crack: where the two keep opposite sides, the edge's ends part (at the
+          // lower id, which either order finds alike).
+          if (o->second.far.dot(snapped_.at(v).far) > 0) {
+            if (it != edge_hits_.end()) edge_hits_.erase(it);
+          } else {
+            const VertexId at = Index(v) < Index(other) ? v : other;
+            edge_hits_[key] = {.fraction = at == v ? (Index(v) < Index(other) ? 0.0 : 1.0)
+                                                   : (Index(other) < Index(v) ? 0.0 : 1.0),
+                               .at = at,
+                               .crossed = false};
+          }
+          continue;
+        }
+        const Eigen::Vector3d edge = mesh_->current_position(other) - mesh_->current_position(v);
+        if (edge.dot(snapped_.at(v).far) <= 1e-9 * edge.norm()) continue;
+        if (it == edge_hits_.end()) {
+          edge_hits_[key] = {
+              .fraction = Index(v) < Index(other) ? 0.0 : 1.0, .at = v, .crossed = false};
+          ++statistics_.snapped_hits;
+        } else if (it->second.at == kNoVertex) {
+          it->second.at = v;  // a hit waiting at it: now taken at it
+          ++statistics_.snapped_hits;
+        }
+      }
+    }
+    Join(around);  // they split together, so the copy takes the far side at once
+  }
+}
+
+void Cutter::Unsnap(VertexId v) {
+  const auto it = snapped_.find(v);
+  if (it->second.copy != kNoVertex) {
+    (void)mesh_->RemoveVertex(it->second.copy);  // no tet uses it yet
+  }
+  snapped_.erase(it);
+  was_snapped_.insert(v);
+  ++statistics_.unsnapped_vertices;
+  for (const TetId t : mesh_->TetsAround(v)) {
+    for (const VertexId other : mesh_->tet(t)) {
+      const auto hit = edge_hits_.find(MakeEdgeKey(v, other));
+      if (other == v || hit == edge_hits_.end()) continue;
+      if (hit->second.at == other && !hit->second.crossed &&
+          (mesh_->current_position(v) - mesh_->current_position(other))
+                  .dot(snapped_.at(other).far) <= 0) {
+        edge_hits_.erase(hit);  // cut at the other end only because both were on the crack
+        continue;
+      }
+      if (hit->second.at != v) continue;
+      hit->second.at = kNoVertex;
+      const double fraction = hit->second.fraction;
+      if (!hit->second.crossed) {
+        edge_hits_.erase(hit);  // never crossed: cut only because the vertex snapped
+      } else if (fraction < kDegenerate || fraction > 1 - kDegenerate) {
+        edge_hits_.erase(hit);  // through the vertex itself: skipped, as unsnapped
+        ++statistics_.degenerate_hits;
+      }
+    }
+  }
+}
+
+void Cutter::KeepSnappedVerticesUsed(const std::vector<mesh::TetVertices>& corners,
+                                     std::vector<std::pair<TetId, TetSplit>>* splits) const {
+  absl::flat_hash_set<TetId> split_tets;
+  for (const auto& [t, split] : *splits) split_tets.insert(t);
+  for (const auto& [v, snapped] : snapped_) {
+    const VertexId copy = snapped.copy;
+    if (copy == kNoVertex) continue;
+    const std::span<const TetId> around = mesh_->TetsAround(v);
+    const bool kept =
+        std::any_of(around.begin(), around.end(), [&](TetId t) { return !split_tets.contains(t); });
+    const bool in_pieces = std::any_of(splits->begin(), splits->end(), [&](const auto& entry) {
+      return std::any_of(
+          entry.second.tets.begin(), entry.second.tets.end(),
+          [&](const mesh::TetVertices& piece) { return mesh::TetHasVertex(piece, v); });
+    });
+    if (kept || in_pieces || around.empty() ||
+        !std::any_of(corners.begin(), corners.end(),
+                     [&](const mesh::TetVertices& c) { return mesh::TetHasVertex(c, v); })) {
+      continue;
+    }
+    for (auto& [t, split] : *splits) {  // the vertex goes over whole: no copy needed
+      for (mesh::TetVertices& piece : split.tets) std::replace(piece.begin(), piece.end(), copy, v);
+    }
+  }
+}
+
+void Cutter::FinishSnapped(const std::vector<mesh::TetVertices>& corners) {
+  for (const mesh::TetVertices& tet : corners) {
+    for (const VertexId v : tet) {
+      const auto it = snapped_.find(v);
+      if (it == snapped_.end()) continue;
+      const VertexId copy = it->second.copy;
+      if (copy != kNoVertex && mesh_->TetsAround(copy).empty()) (void)mesh_->RemoveVertex(copy);
+      snapped_.erase(it);
+      was_snapped_.insert(v);
+    }
+  }
 }
 
 TetId Cutter::GroupOf(TetId t) {
@@ -468,6 +675,13 @@ std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
     EdgeHit& hit = it->second;
     const bool i_low = Index(corners[i]) < Index(corners[j]);
     const VertexId lo = i_low ? corners[i] : corners[j], hi = i_low ? corners[j] : corners[i];
+    if (hit.at != kNoVertex) {  // snapped: the vertex stays on its side, its copy crosses
+      VertexId& copy = snapped_.at(hit.at).copy;
+      if (copy == kNoVertex) copy = MakeVertex({hit.at, hit.at, hit.at, hit.at}, {1, 0, 0, 0});
+      cuts.push_back(
+          {i_low ? i : j, i_low ? j : i, lo == hit.at ? lo : copy, hi == hit.at ? hi : copy});
+      continue;
+    }
     const Eigen::Vector4d weights(1 - hit.fraction, hit.fraction, 0, 0);
     if (pose != nullptr && hit.near_low == kNoVertex) {
       const Eigen::Vector3d a = mesh_->current_position(lo), b = mesh_->current_position(hi);
@@ -530,6 +744,13 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       TetSplit split;
       if (faces.empty()) split = SplitCompletelyCutTet(corners, cuts);
       if (faces.size() == 2) split = SplitCrackedTet(corners, cuts, {faces[0], faces[1]}, rest);
+      LeaveOutCollapsedTets(&split);
+      const double volume = std::abs(SignedVolume(*mesh_, corners));
+      if (std::any_of(split.tets.begin(), split.tets.end(), [&](const mesh::TetVertices& piece) {
+            return std::abs(SignedVolume(*mesh_, piece)) <= 1e-12 * volume;
+          })) {
+        split = {};  // a snapped point made a flat piece: no split of this tet
+      }
       if (split.tets.empty()) {
         failed.push_back(t);
       } else {
@@ -537,6 +758,9 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       }
     }
     if (failed.empty()) {
+      std::vector<mesh::TetVertices> group_corners;
+      for (const TetId t : group) group_corners.push_back(mesh_->tet(t));
+      KeepSnappedVerticesUsed(group_corners, &splits);
       for (auto& [t, split] : splits) {
         const mesh::TetVertices corners = mesh_->tet(t);
         (void)mesh_->RemoveTet(t);
@@ -555,8 +779,18 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
           face_hits_.erase(MakeFaceKey(corners, f));
         }
       }
+      FinishSnapped(group_corners);
       break;
     }
+    // A tet that cannot be split with snapped points is tried without them: its snapped
+    // vertices give their hits back as they were found.
+    const std::size_t unsnapped_before = statistics_.unsnapped_vertices;
+    for (const TetId t : failed) {
+      for (const VertexId v : mesh_->tet(t)) {
+        if (snapped_.contains(v)) Unsnap(v);
+      }
+    }
+    if (statistics_.unsnapped_vertices > unsnapped_before) continue;
     // Drop the hits of the tets that cannot be split, with the vertices made for them (no
     // tet uses those yet), and look at the group again.
     for (const TetId t : failed) {

@@ -71,6 +71,14 @@ enum class CutMode { kProgressive, kDeferred };
 // solve, while the opening still follows the blade (README: what it costs and buys).
 inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 
+// Snapping (the paper's proposal against slivers; deferred cutting): an edge crossed within
+// this fraction of its length from a vertex is taken as crossed at the vertex, which then lies
+// on the crack, and so is every other edge at it the blade crosses while its tets wait. When
+// they split, the vertex keeps its tets on its own side and a copy of it takes the other side:
+// cuts through vertices and along edges are the minimal cases with some cut points at corners
+// (their collapsed pieces left out). A vertex snaps once. 0: no snapping.
+inline constexpr double kDefaultSnapFraction = 0;
+
 // The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
 // temporary face points and whether the tip is inside. Case 8 and 9 have the same counts; in
 // 8 the two cut edges share a corner, in 9 they are opposite. 0: none of the eleven.
@@ -84,6 +92,10 @@ struct CutStatistics {
   std::array<std::size_t, 7> tets_by_case{};  // cut tets by CutCase (index = enum value)
   std::size_t dropped_hits = 0;               // hits that could not be realised
   std::size_t degenerate_hits = 0;            // crossings too close to a vertex or edge, skipped
+  std::size_t snapped_vertices = 0;           // vertices put on the crack by snapping
+  std::size_t snapped_hits = 0;               // edge crossings taken at a snapped vertex
+  // Snapped vertices taken off the crack again: a tet at them could not be split with them.
+  std::size_t unsnapped_vertices = 0;
   // Progressive: crossings of an edge or face that a tet the blade is in does not have among its
   // own (made by a final subdivision beside it), skipped: it could not split them alike.
   std::size_t unrealisable_hits = 0;
@@ -114,10 +126,13 @@ class Cutter {
   // The mesh must outlive the cutter and change only through it while it cuts. `cell_size`
   // (m) sets the grid; a mean edge length is a good choice. INVALID_ARGUMENT for a bad size.
   // `min_temporary_height`: see kDefaultMinTemporaryHeight (0: no piece is soft).
+  // `snap_fraction`: see kDefaultSnapFraction; in [0, 0.5), and 0 unless deferred (progressive
+  // cutting does not snap yet).
   static absl::StatusOr<Cutter> Create(mesh::TetMesh* mesh, double cell_size,
                                        const BladeLimits& limits = {},
                                        CutMode mode = CutMode::kProgressive,
-                                       double min_temporary_height = kDefaultMinTemporaryHeight);
+                                       double min_temporary_height = kDefaultMinTemporaryHeight,
+                                       double snap_fraction = kDefaultSnapFraction);
 
   // Applies one pose. INVALID_ARGUMENT (and nothing changed) for a bad pose. The first pose
   // only places the blade. Cost: the tets near the swept surface and the groups split.
@@ -164,6 +179,10 @@ class Cutter {
   struct EdgeHit {
     double fraction;  // from the lower-id vertex to the higher
     mesh::VertexId near_low{0xffffffffu}, near_high{0xffffffffu};  // made when split
+    mesh::VertexId at{0xffffffffu};  // snapped: the end it is taken to be crossed at
+    // False for an edge cut at a snapped vertex before the blade crossed it (`fraction` is
+    // then that vertex's end), until it does.
+    bool crossed = true;
   };
   struct FaceHit {
     Eigen::Vector3d barycentric;  // on the face's vertices in increasing id order
@@ -200,13 +219,14 @@ class Cutter {
   };
 
   Cutter(mesh::TetMesh* mesh, TetGrid grid, double cell_size, const BladeLimits& limits,
-         CutMode mode, double min_temporary_height)
+         CutMode mode, double min_temporary_height, double snap_fraction)
       : mesh_(mesh),
         grid_(std::move(grid)),
         memory_margin_(0.25 * cell_size),
         limits_(limits),
         mode_(mode),
-        min_temporary_height_(min_temporary_height) {}
+        min_temporary_height_(min_temporary_height),
+        snap_fraction_(snap_fraction) {}
 
   // Records the hits of the blade moving from `from` to `to`, and returns the tets near it
   // (progressive: the open tets for their pieces).
@@ -250,6 +270,30 @@ class Cutter {
   void CloseOpenTet(mesh::TetId t);
   // Forgets the hits of `corners` that no open tet has any more.
   void ForgetHitsOf(const mesh::TetVertices& corners);
+  // An edge crossing found this pose: fraction from the lower-id vertex.
+  struct Crossing {
+    EdgeKey key;
+    mesh::VertexId low, high;
+    double fraction;
+  };
+  // Records this pose's edge crossings, snapping them where snap_fraction_ says (see
+  // kDefaultSnapFraction), and adds the keys of the new hits to `new_edges`.
+  // `normal`: the swept surface's, unit (zero: nothing snaps).
+  void RecordEdgeCrossings(const std::vector<Crossing>& crossings, const Eigen::Vector3d& normal,
+                           std::vector<EdgeKey>* new_edges);
+  // Puts each vertex on the crack, its copy to take the side its direction points to: the hits
+  // waiting at it are taken at it and its tets join one group. Not a vertex with a hit waiting
+  // on an edge to its own side.
+  void Snap(const absl::flat_hash_map<mesh::VertexId, Eigen::Vector3d>& to_snap);
+  // Takes `v` off the crack: its hits are as they were found (those through it skipped), and
+  // it does not snap again.
+  void Unsnap(mesh::VertexId v);
+  // Where every tet at a snapped vertex of the group goes to its copy's side, the pieces take
+  // the vertex itself instead (an original vertex stays in use).
+  void KeepSnappedVerticesUsed(const std::vector<mesh::TetVertices>& corners,
+                               std::vector<std::pair<mesh::TetId, TetSplit>>* splits) const;
+  // After a group split: its snapped vertices are done (their copies left out if unused).
+  void FinishSnapped(const std::vector<mesh::TetVertices>& corners);
   // Joins the groups of tets that share a new hit (each made a group if it was not in one).
   void Join(std::span<const mesh::TetId> tets);
   mesh::TetId GroupOf(mesh::TetId t);
@@ -281,6 +325,16 @@ class Cutter {
   BladeLimits limits_;
   CutMode mode_;
   double min_temporary_height_;  // a fraction of the smallest height
+  double snap_fraction_;         // of an edge's length
+  // Snapped vertices whose tets wait to split, with the copy that takes the far side (made
+  // when first needed) and the direction of that side, and the vertices that snapped once
+  // (they do not again).
+  struct SnappedVertex {
+    mesh::VertexId copy;  // kNoVertex until made
+    Eigen::Vector3d far;  // towards the copy's side
+  };
+  absl::flat_hash_map<mesh::VertexId, SnappedVertex> snapped_;
+  absl::flat_hash_set<mesh::VertexId> was_snapped_;
   std::optional<BladePose> previous_;
   // The current positions, when the previous pose was applied, of the vertices then near the
   // blade (by index).

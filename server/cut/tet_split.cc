@@ -450,4 +450,20 @@ TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut
   return split;
 }
 
+void LeaveOutCollapsedTets(TetSplit* split) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < split->tets.size(); ++k) {
+    mesh::TetVertices sorted = split->tets[k];
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+    split->tets[kept] = split->tets[k];
+    if (!split->on_corner0_side.empty()) {
+      split->on_corner0_side[kept] = split->on_corner0_side[k];
+    }
+    ++kept;
+  }
+  split->tets.resize(kept);
+  if (!split->on_corner0_side.empty()) split->on_corner0_side.resize(kept);
+}
+
 }  // namespace kerf::cut

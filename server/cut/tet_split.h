@@ -82,4 +82,9 @@ TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut
                      const std::vector<FacePoint>& face_points, mesh::VertexId apex,
                      const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
+// Leaves out the pieces with a repeated vertex: where a cut point is a corner itself (a
+// snapped crossing, see Cutter), the pieces between them collapse, and the others tile the
+// tet. Their faces on the tet's faces collapse alike in every neighbour.
+void LeaveOutCollapsedTets(TetSplit* split);
+
 }  // namespace kerf::cut

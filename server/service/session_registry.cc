@@ -85,6 +85,7 @@ absl::StatusOr<CreatedSession> SessionRegistry::Create(
   // replay means the same whatever the defaults become.
   spec->mutable_cutting()->set_mode(scene->cut_mode);
   spec->mutable_cutting()->set_min_temporary_height(scene->min_temporary_height);
+  spec->mutable_cutting()->set_snap_fraction(scene->snap_fraction);
   spec->mutable_integration()->set_method(scene->method);
   spec->mutable_elasticity()->set_model(sim::ElasticityModelOf(scene->elastic.law));
   spec->mutable_elasticity()->set_auto_strain(scene->elastic.auto_strain);

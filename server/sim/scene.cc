@@ -186,6 +186,18 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
                        scene.min_temporary_height));
     }
   }
+  if (spec.cutting().has_snap_fraction()) {
+    scene.snap_fraction = spec.cutting().snap_fraction();
+    if (!(scene.snap_fraction >= 0 && scene.snap_fraction < 0.5)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("cutting.snap_fraction must be in [0, 0.5), got ", scene.snap_fraction));
+    }
+    if (scene.snap_fraction > 0 && scene.cut_mode != kerf::v1::Cutting::DEFERRED) {
+      return absl::InvalidArgumentError(
+          "cutting.snap_fraction needs cutting.mode DEFERRED (progressive cutting does not snap "
+          "yet)");
+    }
+  }
   if (!kerf::v1::Elasticity::Model_IsValid(spec.elasticity().model())) {
     return absl::InvalidArgumentError(absl::StrCat(
         "elasticity.model must be LINEAR, COROTATIONAL or AUTO, got ", spec.elasticity().model()));

@@ -29,6 +29,7 @@ struct Scene {
   kerf::v1::Needs needs;  // carried for the service; the simulation itself needs no output
   kerf::v1::Cutting::Mode cut_mode = kerf::v1::Cutting::PROGRESSIVE;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // see kerf.v1.Cutting
+  double snap_fraction = cut::kDefaultSnapFraction;               // see kerf.v1.Cutting
   fem::ElasticOptions elastic;                                    // see kerf.v1.Elasticity
   std::optional<fem::SleepOptions> sleep;  // set: vertices at rest sleep (kerf.v1.Sleeping)
 };

@@ -65,7 +65,7 @@ absl::Status Simulation::ApplyBladePose(const cut::BladePose& pose) {
         &scene_.mesh, mesh::MeanEdgeLength(scene_.mesh), {},
         scene_.cut_mode == kerf::v1::Cutting::DEFERRED ? cut::CutMode::kDeferred
                                                        : cut::CutMode::kProgressive,
-        scene_.min_temporary_height);
+        scene_.min_temporary_height, scene_.snap_fraction);
     if (!cutter.ok()) return cutter.status();
     cutter_ = std::make_unique<cut::Cutter>(*std::move(cutter));
     // Slivers standing in for a tet while the blade is in it are softened.

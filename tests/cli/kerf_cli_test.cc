@@ -461,6 +461,40 @@ TEST(KerfCli, CutReportsHeldPosesAndSoftenedPieces) {
       1);
 }
 
+// Snapping: along the straight path the blade passes within 0.2 of an edge of a plane of
+// vertices; deferred with --snap 0.2 it cuts through them, and every cut tet goes over whole
+// (no sliver, the lattice's own 45 degrees); progressive cutting refuses to snap.
+TEST(KerfCli, CutSnapsThroughVerticesWhenAsked) {
+  const auto cut = [](absl::string_view extra) {
+    kerf::v1::CutReport report;
+    const CliResult run = Kerf(absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR,
+                                            "/server/cut/paths/lattice-straight.json --out ",
+                                            ::testing::TempDir(), "/snap.vtu --json", extra));
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok());
+    return report;
+  };
+  const kerf::v1::CutReport plain = cut(" --deferred");
+  const kerf::v1::CutReport snapped = cut(" --deferred --snap 0.2");
+  EXPECT_EQ(plain.snapped_vertices(), 0u);
+  EXPECT_GT(plain.slivers(), 0u);
+  EXPECT_GT(snapped.snapped_vertices(), 0u);
+  EXPECT_EQ(snapped.snap_fraction(), 0.2);
+  EXPECT_EQ(snapped.slivers(), 0u);
+  EXPECT_EQ(snapped.new_tets(), snapped.cut_tets());
+  EXPECT_EQ(snapped.tets_after(), snapped.tets_before());
+  EXPECT_NEAR(snapped.min_dihedral_deg(), 45, 1e-9);
+  EXPECT_EQ(snapped.components(), plain.components());
+  EXPECT_TRUE(snapped.valid());
+  const CliResult progressive = Kerf(absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR,
+                                                  "/server/cut/paths/lattice-straight.json --out ",
+                                                  ::testing::TempDir(), "/snap.vtu --snap 0.2"));
+  EXPECT_EQ(progressive.exit_code, 1);
+  EXPECT_NE(progressive.output.find("snapping is made for deferred cutting only"),
+            std::string::npos)
+      << progressive.output;
+}
+
 TEST(KerfCli, CutRefusesABadPathNamingThePose) {
   const std::string dir = ::testing::TempDir();
   ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 2 2 2 --out ", dir, "/small.msh")).exit_code, 0);

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "cut/progressive_case_paths.h"
+#include "geometry/tet_measures.h"
 #include "mesh/boundary_surface.h"
 #include "mesh/connected_components.h"
 #include "mesh/face_tiling.h"
@@ -173,6 +174,125 @@ TEST(Cutter, DegenerateBladesLeaveAValidMesh) {
   }
 }
 
+// Snapping (deferred): a blade 1.2 mm (0.12 of an edge) past the plane of vertices x = 30 mm
+// cuts through those vertices instead: each cut tet becomes one tet with copies on the far
+// side, so no new shape (and no sliver) appears; without snapping the same blade makes slivers.
+TEST(Snapping, ACutNearAPlaneOfVerticesGoesThroughThemAndMakesNoNewShape) {
+  const auto smallest_dihedral = [](const TetMesh& m) {
+    double smallest = 180;
+    for (const mesh::TetId t : m.tets()) {
+      const mesh::TetVertices& v = m.tet(t);
+      smallest =
+          std::min(smallest, geometry::MeasureTet(m.rest_position(v[0]), m.rest_position(v[1]),
+                                                  m.rest_position(v[2]), m.rest_position(v[3]))
+                                 .min_dihedral_deg);
+    }
+    return smallest;
+  };
+  const TetMesh uncut = Bar();
+  for (const double snap : {0.0, 0.2}) {
+    SCOPED_TRACE(snap);
+    TetMesh m = uncut;
+    const std::uint32_t original_vertices = m.vertex_index_bound();
+    const double volume = RestVolume(m);
+    Cutter cutter =
+        *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred, kDefaultMinTemporaryHeight, snap);
+    double time = 0;
+    Sweep(cutter, m, {0.0312, -0.005, -0.005}, {0.0312, -0.005, 0.025}, {0, 0.03, 0}, &time);
+    cutter.Finish();
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);  // cut through either way
+    const CutStatistics& s = cutter.statistics();
+    EXPECT_EQ(s.dropped_hits, 0u);
+    if (snap == 0) {
+      EXPECT_EQ(s.snapped_vertices, 0u);
+      EXPECT_GT(s.new_tets, s.cut_tets);
+      EXPECT_LT(smallest_dihedral(m), 0.5 * smallest_dihedral(uncut));
+      continue;
+    }
+    // The 3 x 3 vertices of the plane x = 30 mm, each copied once; every tet between x = 30 and
+    // 40 mm with a corner on that plane goes to the far side whole.
+    EXPECT_EQ(s.snapped_vertices, 9u);
+    EXPECT_EQ(s.unsnapped_vertices, 0u);
+    EXPECT_GT(s.cut_tets, 0u);
+    EXPECT_EQ(s.new_tets, s.cut_tets);
+    EXPECT_EQ(m.tet_count(), uncut.tet_count());
+    EXPECT_EQ(m.vertex_count(), uncut.vertex_count() + 9);
+    for (const VertexId v : m.vertices()) {
+      if (mesh::Index(v) >= original_vertices) {
+        EXPECT_NEAR(m.rest_position(v).x(), 0.03, 1e-15);  // a copy of a vertex on the plane
+      }
+    }
+    EXPECT_DOUBLE_EQ(smallest_dihedral(m), smallest_dihedral(uncut));
+  }
+}
+
+// A blade exactly through a plane of vertices crosses their edges at their ends: unsnapped
+// those crossings are skipped and nothing is cut; snapped, the bar comes apart there.
+TEST(Snapping, ABladeExactlyThroughVerticesCutsThroughThem) {
+  for (const double snap : {0.0, 0.2}) {
+    SCOPED_TRACE(snap);
+    TetMesh m = Bar();
+    const double volume = RestVolume(m);
+    Cutter cutter =
+        *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred, kDefaultMinTemporaryHeight, snap);
+    double time = 0;
+    Sweep(cutter, m, {0.03, -0.005, -0.005}, {0.03, -0.005, 0.025}, {0, 0.03, 0}, &time);
+    cutter.Finish();
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    const CutStatistics& s = cutter.statistics();
+    std::printf(
+        "exactly through vertices, snap %g: %zu cut, %zu degenerate, %zu snapped, %zu unsnapped, "
+        "%zu hits, %zu dropped\n",
+        snap, s.cut_tets, s.degenerate_hits, s.snapped_vertices, s.unsnapped_vertices,
+        s.snapped_hits, s.dropped_hits);
+    if (snap == 0) {
+      EXPECT_GT(s.degenerate_hits, 0u);
+      EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
+    } else {
+      EXPECT_EQ(s.degenerate_hits, 0u);
+      EXPECT_EQ(s.snapped_vertices, 9u);
+      EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+    }
+  }
+}
+
+// Where a tet at a snapped vertex has no split with it (here the crack's front, which ends
+// inside the bar, meets snapped vertices), the vertex is taken off the crack again and the tet
+// is split as without snapping: nothing is dropped, and the crack is as deep.
+TEST(Snapping, AVertexThatCannotBeSplitWithTheCrackIsUnsnapped) {
+  std::size_t cut_without = 0;
+  for (const double snap : {0.0, 0.2}) {
+    SCOPED_TRACE(snap);
+    TetMesh m = Bar();
+    const double volume = RestVolume(m);
+    const double area = BoundaryArea(m);
+    Cutter cutter =
+        *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred, kDefaultMinTemporaryHeight, snap);
+    double time = 0;
+    // The tip runs 9.3 mm deep, 1.2 mm past the plane x = 30 mm; the heel stays above the bar.
+    Sweep(cutter, m, {0.0312, -0.005, 0.0107}, {0.0312, -0.005, 0.03}, {0, 0.03, 0}, &time);
+    cutter.Finish();
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
+    const CutStatistics& s = cutter.statistics();
+    EXPECT_EQ(s.dropped_hits, 0u);
+    std::printf("crack near vertices, snap %g: %zu cut, %zu new, %zu snapped, %zu unsnapped\n",
+                snap, s.cut_tets, s.new_tets, s.snapped_vertices, s.unsnapped_vertices);
+    EXPECT_NEAR(BoundaryArea(m) - area, 2 * 0.02 * 0.0093, 0.15 * 2 * 0.02 * 0.0093);
+    if (snap == 0) {
+      cut_without = s.cut_tets;
+    } else {
+      EXPECT_GT(s.snapped_vertices, 0u);
+      EXPECT_GT(s.unsnapped_vertices, 0u);
+      EXPECT_EQ(s.cut_tets, cut_without);
+    }
+  }
+}
+
 TEST(Cutter, ABadPoseIsRefusedAndChangesNothing) {
   TetMesh m = Bar();
   Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred);
@@ -258,7 +378,14 @@ namespace kerf::cut {
 namespace {
 
 struct RandomCutTotals {
-  std::size_t poses = 0, cut_tets = 0, dropped = 0, held = 0, frozen = 0;
+  std::size_t poses = 0, cut_tets = 0, dropped = 0, held = 0, frozen = 0, snapped = 0;
+};
+
+// How a random path is cut: the mode, and the snap fraction (0: none).
+struct RandomCutting {
+  CutMode mode;
+  double snap_fraction;
+  const char* name;
 };
 
 // Random blades wandering through `make_mesh()`'s mesh (of about `size` across, starting
@@ -266,7 +393,7 @@ struct RandomCutTotals {
 // conforming and keep its volume after every pose.
 RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
                                const Eigen::Vector3d& low, double size, int paths, int poses,
-                               std::uint32_t seed, CutMode mode) {
+                               std::uint32_t seed, const RandomCutting& cutting) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0, 1);
   BladeLimits limits;
@@ -278,7 +405,8 @@ RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
     TetMesh m = make_mesh();
     const TetMesh uncut = m;
     const double volume = RestVolume(m);
-    Cutter cutter = *Cutter::Create(&m, 0.15 * size, limits, mode);
+    Cutter cutter = *Cutter::Create(&m, 0.15 * size, limits, cutting.mode,
+                                    kDefaultMinTemporaryHeight, cutting.snap_fraction);
     const auto source = [&](mesh::TetId t) { return cutter.SourceTet(t); };
     // A blade a quarter to half the mesh's size, pointing roughly downward.
     Eigen::Vector3d tip = low + size * Eigen::Vector3d(unit(random), unit(random), unit(random));
@@ -316,15 +444,21 @@ RandomCutTotals RunRandomPaths(const std::function<TetMesh()>& make_mesh,
     totals.frozen += cutter.statistics().frozen_tets;
     totals.cut_tets += cutter.statistics().cut_tets;
     totals.dropped += cutter.statistics().dropped_hits;
+    totals.snapped += cutter.statistics().snapped_vertices;
   }
   return totals;
 }
 
 // 200 paths of 50 poses each: 10^4 poses per mode.
-class RandomPaths : public ::testing::TestWithParam<CutMode> {
+class RandomPaths : public ::testing::TestWithParam<RandomCutting> {
  protected:
-  static const char* ModeName() {
-    return GetParam() == CutMode::kProgressive ? "progressive" : "deferred";
+  // Snapping happens when it is asked for, and only then.
+  static void ExpectSnapping(const RandomCutTotals& totals) {
+    if (GetParam().snap_fraction > 0) {
+      EXPECT_GT(totals.snapped, 0u);
+    } else {
+      EXPECT_EQ(totals.snapped, 0u);
+    }
   }
 };
 
@@ -333,10 +467,12 @@ TEST_P(RandomPaths, ThroughTheLatticeKeepEveryPropertyAfterEveryPose) {
       RunRandomPaths(Bar, Eigen::Vector3d(0, -0.005, 0), 0.06, 200, 50, 17, GetParam());
   std::printf(
       "random paths, lattice, %s: %zu poses, %zu tets cut, %zu hits dropped, %zu poses "
-      "held, %zu tets frozen\n",
-      ModeName(), totals.poses, totals.cut_tets, totals.dropped, totals.held, totals.frozen);
+      "held, %zu tets frozen, %zu vertices snapped\n",
+      GetParam().name, totals.poses, totals.cut_tets, totals.dropped, totals.held, totals.frozen,
+      totals.snapped);
   EXPECT_EQ(totals.poses, 10000u);
   EXPECT_GT(totals.cut_tets, 0u);
+  ExpectSnapping(totals);
 }
 
 TEST_P(RandomPaths, ThroughTheLiverKeepEveryPropertyAfterEveryPose) {
@@ -350,17 +486,20 @@ TEST_P(RandomPaths, ThroughTheLiverKeepEveryPropertyAfterEveryPose) {
       copy, bounds.low, (bounds.high - bounds.low).maxCoeff(), 100, 50, 23, GetParam());
   std::printf(
       "random paths, liver, %s: %zu poses, %zu tets cut, %zu hits dropped, %zu poses "
-      "held, %zu tets frozen\n",
-      ModeName(), totals.poses, totals.cut_tets, totals.dropped, totals.held, totals.frozen);
+      "held, %zu tets frozen, %zu vertices snapped\n",
+      GetParam().name, totals.poses, totals.cut_tets, totals.dropped, totals.held, totals.frozen,
+      totals.snapped);
   EXPECT_EQ(totals.poses, 5000u);
   EXPECT_GT(totals.cut_tets, 0u);
+  ExpectSnapping(totals);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothModes, RandomPaths,
-                         ::testing::Values(CutMode::kProgressive, CutMode::kDeferred),
-                         [](const auto& mode) {
-                           return mode.param == CutMode::kProgressive ? "Progressive" : "Deferred";
-                         });
+                         ::testing::Values(RandomCutting{CutMode::kProgressive, 0, "Progressive"},
+                                           RandomCutting{CutMode::kDeferred, 0, "Deferred"},
+                                           RandomCutting{CutMode::kDeferred, 0.2,
+                                                         "DeferredSnapped"}),
+                         [](const auto& cutting) { return cutting.param.name; });
 
 }  // namespace
 }  // namespace kerf::cut

@@ -137,6 +137,46 @@ TEST(SplitCompletelyCutTet, CaseOneCornerOffInAllFourOrientations) {
   }
 }
 
+// Snapping: where a cut point is a corner (the blade through that corner), the pieces between
+// them collapse and are left out; the rest tile the tet, on the two sides. Corner 0 cut off
+// through corner 3 itself: a tet on corner 0's side and the pyramid over the face 1-2 side
+// (two tets), three in all. Through corners 2 and 3: two tets. (Through all three: the whole
+// tet, moved to the copies on corner 0's side: below.)
+TEST(LeaveOutCollapsedTets, CutsThroughCornersLeaveTheTetTiledOnTwoSides) {
+  std::mt19937 random(5);
+  for (int through = 1; through <= 3; ++through) {
+    for (int trial = 0; trial < 50; ++trial) {
+      SCOPED_TRACE(::testing::Message() << "through " << through << " corners, trial " << trial);
+      const std::array<Vector3d, 4> x = RandomTet(random);
+      CutTet t = MakeCutTet(x, {{0, 1}, {0, 2}, {0, 3}}, random);
+      // The last `through` cuts are at their far corner: that corner keeps its side, a copy of
+      // it (one per corner, shared by every edge cut there) takes corner 0's.
+      for (int k = 3 - through; k < 3; ++k) {
+        EdgeCut& cut = t.cuts[k];
+        ASSERT_TRUE(t.mesh.RemoveVertex(cut.near_a).ok());  // no cut point inside the edge
+        ASSERT_TRUE(t.mesh.RemoveVertex(cut.near_b).ok());
+        cut.near_a = t.mesh.AddVertex(x[cut.corner_b]);
+        cut.near_b = t.corners[cut.corner_b];
+      }
+      TetSplit split = SplitCompletelyCutTet(t.corners, t.cuts);
+      ASSERT_EQ(split.cut_case, CutCase::kOneCornerOff);
+      LeaveOutCollapsedTets(&split);
+      ASSERT_EQ(split.tets.size(), split.on_corner0_side.size());
+      if (through < 3) {
+        ExpectSplitKeepsTheProperties(t, split, through == 1 ? 3 : 2, x);
+        continue;
+      }
+      ASSERT_EQ(split.tets.size(), 1u);
+      EXPECT_TRUE(split.on_corner0_side[0]);
+      mesh::TetVertices whole = split.tets[0], expected = {t.corners[0], t.cuts[0].near_a,
+                                                           t.cuts[1].near_a, t.cuts[2].near_a};
+      std::sort(whole.begin(), whole.end());
+      std::sort(expected.begin(), expected.end());
+      EXPECT_EQ(whole, expected);
+    }
+  }
+}
+
 TEST(SplitCompletelyCutTet, CaseTwoAndTwoInAllThreeOrientations) {
   std::mt19937 random(2);
   for (int partner = 1; partner < 4; ++partner) {

@@ -1,6 +1,7 @@
 // Fuzz target for the cutter: the input steers a blade through a small bar (each 7 bytes:
-// tip and heel moves, and a byte that may hesitate or withdraw the blade). Whatever the
-// blade does, after every pose the mesh is valid and conforming and keeps its volume.
+// tip and heel moves, and a byte that may hesitate or withdraw the blade); an odd length snaps
+// (0.2 of an edge). Whatever the blade does, after every pose the mesh is valid and conforming
+// and keeps its volume.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -35,7 +36,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   kerf::cut::BladeLimits limits;
   limits.max_speed = 1e9;
   kerf::cut::Cutter cutter =
-      *kerf::cut::Cutter::Create(&m, 0.01, limits, kerf::cut::CutMode::kDeferred);
+      *kerf::cut::Cutter::Create(&m, 0.01, limits, kerf::cut::CutMode::kDeferred,
+                                 kerf::cut::kDefaultMinTemporaryHeight, size % 2 == 1 ? 0.2 : 0);
   Eigen::Vector3d tip(0.015, -0.003, 0.005), heel(0.015, -0.003, 0.03);
   double time = 0;
   for (std::size_t i = 0; i + 7 <= size; i += 7) {

@@ -85,13 +85,16 @@ TEST_F(SessionRegistryJournalTest, ASessionLeftOpenIsRestoredWithItsTokens) {
   EXPECT_EQ((*session)->Info().tets(), 576u);
 }
 
-// A journal names the cut mode, height guard and method its session ran with, even where the scene
-// left them to the defaults, so that it replays alike if the defaults change.
+// A journal names the cut mode, height guard, snap fraction and method its session ran with,
+// even where the scene left them to the defaults, so that it replays alike if the defaults
+// change.
 TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsChose) {
   const kerf::v1::Scene scene = JournaledScene({});  // the default scene
   EXPECT_EQ(scene.cutting().mode(), kerf::v1::Cutting::PROGRESSIVE);
   ASSERT_TRUE(scene.cutting().has_min_temporary_height());
   EXPECT_EQ(scene.cutting().min_temporary_height(), cut::kDefaultMinTemporaryHeight);
+  ASSERT_TRUE(scene.cutting().has_snap_fraction());
+  EXPECT_EQ(scene.cutting().snap_fraction(), 0);
   EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::IMPLICIT_EULER);
 }
 

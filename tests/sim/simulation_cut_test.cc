@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "fem/tensor_mass_model.h"
 #include "mesh/connected_components.h"
@@ -160,6 +161,56 @@ TEST(Simulation, ProgressiveCuttingFollowsMovingTissueIncrementally) {
     EXPECT_EQ(s->cutter()->statistics().cut_tets, 96u);
     EXPECT_EQ(s->cutter()->statistics().dropped_hits, 0u);
   }
+}
+
+// Snapping (deferred): a cut through the sagging bar 0.5 mm past the plane of vertices x = 30 mm
+// (at rest) goes through them. Each copy starts where its vertex is and moves as it does; the
+// model follows; the cut-off end falls as a piece cut along the blade does.
+TEST(Simulation, ASnappedCutGoesThroughVerticesAndTheCopiesStartWithTheirState) {
+  std::unique_ptr<Simulation> s = *Simulation::Create(*BuildScene(
+      *ParseSceneText(std::string(kHeldBarScene) + "cutting { mode: DEFERRED snap_fraction: 0.2 }",
+                      "held-bar"),
+      "."));
+  for (int step = 0; step < 100; ++step) s->Step();
+  const std::uint32_t original_vertices = s->mesh().vertex_index_bound();
+  double time = 0;
+  for (int k = 0; k <= 15; ++k) {
+    const Eigen::Vector3d tip(0.0305, -0.005 + 0.002 * k, -0.03);
+    ASSERT_TRUE(s->ApplyBladePose({time, tip, tip + Eigen::Vector3d(0, 0, 0.06)}).ok());
+    time += 0.01;
+  }
+  ASSERT_TRUE(s->WithdrawBlade().ok());
+  const cut::CutStatistics& cut = s->cutter()->statistics();
+  EXPECT_EQ(cut.snapped_vertices, 9u);
+  EXPECT_EQ(cut.unsnapped_vertices, 0u);
+  EXPECT_EQ(cut.new_tets, cut.cut_tets);  // every cut tet went over whole
+  EXPECT_EQ(mesh::FindConnectedComponents(s->mesh()).count, 2u);
+  ExpectModelFollowsMesh(*s);
+  int copies = 0;
+  for (const mesh::VertexId copy : s->mesh().vertices()) {
+    if (mesh::Index(copy) < original_vertices) continue;
+    ++copies;
+    const Eigen::Vector3d& rest = s->mesh().rest_position(copy);
+    EXPECT_NEAR(rest.x(), 0.03, 1e-15);
+    for (const mesh::VertexId v : s->mesh().vertices()) {
+      if (mesh::Index(v) < original_vertices && s->mesh().rest_position(v) == rest) {
+        EXPECT_EQ(s->state().displacement[mesh::Index(copy)],
+                  s->state().displacement[mesh::Index(v)]);
+        EXPECT_EQ(s->state().velocity[mesh::Index(copy)], s->state().velocity[mesh::Index(v)]);
+      }
+    }
+  }
+  EXPECT_EQ(copies, 9);
+  const double cut_time = s->state().time;
+  while (s->state().time < cut_time + 0.1) s->Step();
+  double far_end_drop = 0;
+  for (const mesh::VertexId v : s->mesh().vertices()) {
+    if (s->mesh().rest_position(v).x() > 0.055) {
+      far_end_drop = std::min(far_end_drop, s->state().displacement[mesh::Index(v)].z());
+    }
+  }
+  std::printf("0.1 s after the snapped cut the far end moved %.4f m in z\n", far_end_drop);
+  EXPECT_LT(far_end_drop, -0.03) << "the cut-off end did not fall";
 }
 
 TEST(Simulation, ABadBladePoseChangesNothing) {
