@@ -16,10 +16,19 @@ constexpr Integration kIntegrations[] = {
     {kerf::v1::Integration::SYMPLECTIC_EULER_SUBSTEPPED, 1e-3, "SYMPLECTIC_EULER_SUBSTEPPED, 1 ms"},
     {kerf::v1::Integration::IMPLICIT_EULER, 1e-3, "IMPLICIT_EULER, 1 ms"}};
 
+struct Cutting {
+  kerf::v1::Cutting::Mode mode;
+  double snap_fraction;
+};
+constexpr Cutting kCuttings[] = {{kerf::v1::Cutting::PROGRESSIVE, 0},
+                                 {kerf::v1::Cutting::DEFERRED, 0},
+                                 {kerf::v1::Cutting::DEFERRED, kStabilitySnapFraction}};
+
 }  // namespace
 
 absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOptions& options) {
   kerf::v1::StabilityExperiment experiment;
+  experiment.set_snapping(true);
   experiment.set_settle_seconds(options.live_cut.settle_seconds);
   experiment.set_slow_down(options.live_cut.slow_down);
   experiment.set_pose_rate_hz(options.live_cut.pose_rate_hz);
@@ -30,23 +39,29 @@ absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOption
   for (const sim::StandardCut& cut : sim::StandardCuts(scenes)) {
     absl::StatusOr<std::vector<cut::BladePose>> path = sim::StandardPath(cut.path);
     if (!path.ok()) return path.status();
-    for (const Integration& integration : kIntegrations) {
-      for (const fem::ElasticLaw law : {fem::ElasticLaw::kLinear, fem::ElasticLaw::kCorotational}) {
-        absl::StatusOr<sim::Scene> scene = sim::StandardScene(cut.scene, options.liver_mesh_path);
-        if (!scene.ok()) return scene.status();
-        scene->method = integration.method;
-        scene->time_step = integration.time_step;
-        scene->cut_mode = kerf::v1::Cutting::PROGRESSIVE;
-        scene->elastic.law = law;
-        absl::StatusOr<kerf::v1::LiveCutRow> row =
-            sim::RunLiveCut(*std::move(scene), *path, options.live_cut);
-        if (!row.ok()) return row.status();
-        row->set_scene(cut.scene);
-        row->set_path(cut.path);
-        row->set_integration(integration.name);
-        row->set_cut_mode("progressive");
-        row->set_law(law == fem::ElasticLaw::kLinear ? "linear" : "corotational");
-        *experiment.add_rows() = *std::move(row);
+    for (const Cutting& cutting : kCuttings) {
+      for (const Integration& integration : kIntegrations) {
+        for (const fem::ElasticLaw law :
+             {fem::ElasticLaw::kLinear, fem::ElasticLaw::kCorotational}) {
+          absl::StatusOr<sim::Scene> scene = sim::StandardScene(cut.scene, options.liver_mesh_path);
+          if (!scene.ok()) return scene.status();
+          scene->method = integration.method;
+          scene->time_step = integration.time_step;
+          scene->cut_mode = cutting.mode;
+          scene->snap_fraction = cutting.snap_fraction;
+          scene->elastic.law = law;
+          absl::StatusOr<kerf::v1::LiveCutRow> row =
+              sim::RunLiveCut(*std::move(scene), *path, options.live_cut);
+          if (!row.ok()) return row.status();
+          row->set_scene(cut.scene);
+          row->set_path(cut.path);
+          row->set_integration(integration.name);
+          row->set_cut_mode(cutting.mode == kerf::v1::Cutting::PROGRESSIVE ? "progressive"
+                                                                           : "deferred");
+          row->set_snap_fraction(cutting.snap_fraction);
+          row->set_law(law == fem::ElasticLaw::kLinear ? "linear" : "corotational");
+          *experiment.add_rows() = *std::move(row);
+        }
       }
     }
   }
@@ -55,24 +70,29 @@ absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOption
 
 std::string FormatStability(const kerf::v1::StabilityExperiment& experiment) {
   std::string out = absl::StrFormat(
-      "stability: each scene settled %g s, then cut progressively along its path %g times "
-      "slower than written, %g poses/s; blew up: energy over %g times that at the first pose; "
-      "snapping: not made (off in every row); a row stops after %g s of wall time\n\n"
-      "| scene | path | integration | law | blew up | after (s) | stopped after (s) | largest "
+      "stability: each scene settled %g s, then cut along its path %g times slower than "
+      "written, %g poses/s; blew up: energy over %g times that at the first pose; snapping: "
+      "deferred cutting only; a row stops after %g s of wall time\n\n"
+      "| scene | path | cutting | integration | law | blew up | after (s) | stopped after (s) | "
+      "largest "
       "energy ratio | "
       "critical step at the end (us) | step (us) | sub-steps (median, max) | smallest radius "
       "ratio | smallest dihedral (deg) | cut tets | held | dropped | valid | wall s per "
-      "simulated s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "simulated s "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       experiment.settle_seconds(), experiment.slow_down(), experiment.pose_rate_hz(),
       experiment.blow_up_energy_ratio(), experiment.max_wall_seconds());
   for (const kerf::v1::LiveCutRow& r : experiment.rows()) {
     absl::StrAppendFormat(
         &out,
-        "| %s | %s | %s | %s | %s | %.3f | %s | %.3g | %.3g | %.4g | %u, %u | %.3g | %.3g | %u | "
+        "| %s | %s | %s | %s | %s | %s | %.3f | %s | %.3g | %.3g | %.4g | %u, %u | %.3g | %.3g | "
+        "%u | "
         "%u | "
         "%u | %s | %.3g |\n",
-        r.scene(), r.path(), r.integration(), r.law(), r.blew_up() ? "YES" : "no",
-        r.blew_up_after(),
+        r.scene(), r.path(),
+        r.snap_fraction() > 0 ? absl::StrFormat("%s, snap %g", r.cut_mode(), r.snap_fraction())
+                              : r.cut_mode(),
+        r.integration(), r.law(), r.blew_up() ? "YES" : "no", r.blew_up_after(),
         r.stopped_after() > 0 ? absl::StrFormat("%.3f", r.stopped_after()) : std::string("-"),
         r.largest_energy_ratio(), 1e6 * r.critical_time_step(), 1e6 * r.time_step(),
         r.sub_steps_median(), r.sub_steps_max(), r.smallest_radius_ratio(),

@@ -2,8 +2,9 @@
 // (sim/standard_scenes.h: the lattice under tension, a deliberately poor-quality lattice, the
 // liver of ../shared/meshes when its file is given) is cut live (sim/live_cut.h) by each
 // integrator (explicit at 0.9 of the critical step re-estimated after every cut, explicit in
-// sub-steps of 1 ms, backward Euler at 1 ms) with each elastic law (linear, corotational).
-// Snapping is not made: every row cuts without it.
+// sub-steps of 1 ms, backward Euler at 1 ms) with each elastic law (linear, corotational),
+// cut progressively (the default), deferred, and deferred with snapping at kStabilitySnapFraction
+// (progressive cutting does not snap yet).
 #pragma once
 
 #include <string>
@@ -14,6 +15,9 @@
 #include "sim/live_cut.h"
 
 namespace kerf::cli {
+
+// The snapping rows' fraction: the open cutters' 0.2 of an edge (../shared/design/cutting.md).
+inline constexpr double kStabilitySnapFraction = 0.2;
 
 struct StabilityOptions {
   std::vector<std::string> scenes = {"lattice-tension", "lattice-poor"};

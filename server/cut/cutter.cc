@@ -388,7 +388,11 @@ void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
       continue;
     }
     const bool low_snapped = snapped_.contains(c.low), high_snapped = snapped_.contains(c.high);
-    if (low_snapped && high_snapped) continue;  // the edge lies along the crack
+    if (low_snapped && high_snapped) {
+      edge_hits_[c.key] = {.fraction = c.fraction, .crossed = true};
+      MarkEdgeBetweenSnapped(c.key, c.low, c.high);
+      continue;
+    }
     if (low_snapped || high_snapped) {
       const VertexId at = low_snapped ? c.low : c.high, other = low_snapped ? c.high : c.low;
       const double from_at = low_snapped ? c.fraction : 1 - c.fraction;
@@ -440,18 +444,9 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
         if (other == v) continue;
         const EdgeKey key = MakeEdgeKey(v, other);
         const auto it = edge_hits_.find(key);
-        if (const auto o = snapped_.find(other); o != snapped_.end()) {
-          // Along the crack: where the two keep opposite sides, the edge's ends part (at the
-          // lower id, which either order finds alike).
-          if (o->second.far.dot(snapped_.at(v).far) > 0) {
-            if (it != edge_hits_.end()) edge_hits_.erase(it);
-          } else {
-            const VertexId at = Index(v) < Index(other) ? v : other;
-            edge_hits_[key] = {.fraction = at == v ? (Index(v) < Index(other) ? 0.0 : 1.0)
-                                                   : (Index(other) < Index(v) ? 0.0 : 1.0),
-                               .at = at,
-                               .crossed = false};
-          }
+        if (snapped_.contains(other)) {
+          if (it == edge_hits_.end()) edge_hits_[key] = {.fraction = 0, .crossed = false};
+          MarkEdgeBetweenSnapped(key, v, other);
           continue;
         }
         const Eigen::Vector3d edge = mesh_->current_position(other) - mesh_->current_position(v);
@@ -470,6 +465,15 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
   }
 }
 
+void Cutter::MarkEdgeBetweenSnapped(EdgeKey key, VertexId a, VertexId b) {
+  EdgeHit& hit = edge_hits_.at(key);
+  // Where the two keep the same side the edge lies along the crack and is not cut; where they
+  // keep opposite sides its ends part, at the lower id (which either order finds alike).
+  hit.along = snapped_.at(a).far.dot(snapped_.at(b).far) > 0;
+  hit.at = hit.along ? kNoVertex : (Index(a) < Index(b) ? a : b);
+  if (!hit.crossed) hit.fraction = 0;  // at the lower id's end
+}
+
 void Cutter::Unsnap(VertexId v) {
   const auto it = snapped_.find(v);
   if (it->second.copy != kNoVertex) {
@@ -478,23 +482,25 @@ void Cutter::Unsnap(VertexId v) {
   snapped_.erase(it);
   was_snapped_.insert(v);
   ++statistics_.unsnapped_vertices;
+  // Its edges are cut as found, or at the other end if that is snapped and it lies on the far
+  // side there.
   for (const TetId t : mesh_->TetsAround(v)) {
     for (const VertexId other : mesh_->tet(t)) {
       const auto hit = edge_hits_.find(MakeEdgeKey(v, other));
       if (other == v || hit == edge_hits_.end()) continue;
-      if (hit->second.at == other && !hit->second.crossed &&
-          (mesh_->current_position(v) - mesh_->current_position(other))
-                  .dot(snapped_.at(other).far) <= 0) {
-        edge_hits_.erase(hit);  // cut at the other end only because both were on the crack
+      EdgeHit& h = hit->second;
+      h.along = false;
+      if (const auto o = snapped_.find(other);
+          o != snapped_.end() &&
+          (mesh_->current_position(v) - mesh_->current_position(other)).dot(o->second.far) > 0) {
+        h.at = other;
         continue;
       }
-      if (hit->second.at != v) continue;
-      hit->second.at = kNoVertex;
-      const double fraction = hit->second.fraction;
-      if (!hit->second.crossed) {
-        edge_hits_.erase(hit);  // never crossed: cut only because the vertex snapped
-      } else if (fraction < kDegenerate || fraction > 1 - kDegenerate) {
-        edge_hits_.erase(hit);  // through the vertex itself: skipped, as unsnapped
+      h.at = kNoVertex;
+      if (!h.crossed) {
+        edge_hits_.erase(hit);  // never crossed: cut only because of the snapping
+      } else if (h.fraction < kDegenerate || h.fraction > 1 - kDegenerate) {
+        edge_hits_.erase(hit);  // through a vertex itself: skipped, as unsnapped
         ++statistics_.degenerate_hits;
       }
     }
@@ -505,8 +511,8 @@ void Cutter::KeepSnappedVerticesUsed(const std::vector<mesh::TetVertices>& corne
                                      std::vector<std::pair<TetId, TetSplit>>* splits) const {
   absl::flat_hash_set<TetId> split_tets;
   for (const auto& [t, split] : *splits) split_tets.insert(t);
-  for (const auto& [v, snapped] : snapped_) {
-    const VertexId copy = snapped.copy;
+  for (const auto& snapped : snapped_) {
+    const VertexId v = snapped.first, copy = snapped.second.copy;
     if (copy == kNoVertex) continue;
     const std::span<const TetId> around = mesh_->TetsAround(v);
     const bool kept =
@@ -673,6 +679,7 @@ std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
     const auto it = edge_hits_.find(MakeEdgeKey(corners[i], corners[j]));
     if (it == edge_hits_.end()) continue;
     EdgeHit& hit = it->second;
+    if (hit.along) continue;  // along the crack between two snapped vertices: not cut
     const bool i_low = Index(corners[i]) < Index(corners[j]);
     const VertexId lo = i_low ? corners[i] : corners[j], hi = i_low ? corners[j] : corners[i];
     if (hit.at != kNoVertex) {  // snapped: the vertex stays on its side, its copy crosses

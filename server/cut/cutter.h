@@ -183,6 +183,9 @@ class Cutter {
     // False for an edge cut at a snapped vertex before the blade crossed it (`fraction` is
     // then that vertex's end), until it does.
     bool crossed = true;
+    // Both ends snapped on the same side: the edge lies along the crack and is not cut (kept
+    // so that the crossing comes back if either end is unsnapped).
+    bool along = false;
   };
   struct FaceHit {
     Eigen::Vector3d barycentric;  // on the face's vertices in increasing id order
@@ -285,6 +288,9 @@ class Cutter {
   // waiting at it are taken at it and its tets join one group. Not a vertex with a hit waiting
   // on an edge to its own side.
   void Snap(const absl::flat_hash_map<mesh::VertexId, Eigen::Vector3d>& to_snap);
+  // The hit `key` of an edge between the snapped vertices `a` and `b`, made along the crack or
+  // cut at one of them.
+  void MarkEdgeBetweenSnapped(EdgeKey key, mesh::VertexId a, mesh::VertexId b);
   // Takes `v` off the crack: its hits are as they were found (those through it skipped), and
   // it does not snap again.
   void Unsnap(mesh::VertexId v);

@@ -337,23 +337,32 @@ TEST(KerfCli, StabilityExperimentCutsThePoorLatticeByEveryMethod) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   kerf::v1::StabilityExperiment experiment;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
-  EXPECT_FALSE(experiment.snapping());
-  ASSERT_EQ(experiment.rows_size(), 2 * 3 * 2);  // paths x integrators x laws
-  int defaults = 0;
+  EXPECT_TRUE(experiment.snapping());
+  // paths x cuttings (progressive, deferred, deferred with snapping) x integrators x laws
+  ASSERT_EQ(experiment.rows_size(), 2 * 3 * 3 * 2);
+  int defaults = 0, snapped = 0;
   for (const kerf::v1::LiveCutRow& r : experiment.rows()) {
-    SCOPED_TRACE(absl::StrCat(r.path(), ", ", r.integration(), ", ", r.law()));
+    SCOPED_TRACE(absl::StrCat(r.path(), ", ", r.cut_mode(), " ", r.snap_fraction(), ", ",
+                              r.integration(), ", ", r.law()));
+    if (r.snap_fraction() > 0) {
+      ++snapped;
+      EXPECT_EQ(r.cut_mode(), "deferred");
+      EXPECT_EQ(r.snap_fraction(), 0.2);
+    }
     EXPECT_EQ(r.scene(), "lattice-poor");
     EXPECT_TRUE(r.valid());
     EXPECT_GT(r.smallest_radius_ratio(), 0);
     EXPECT_LT(r.smallest_radius_ratio(), 0.05);
     EXPECT_GT(r.critical_time_step(), 0);
-    if (r.integration() == "IMPLICIT_EULER, 1 ms" && r.law() == "linear") {
+    if (r.integration() == "IMPLICIT_EULER, 1 ms" && r.law() == "linear" &&
+        r.cut_mode() == "progressive") {
       ++defaults;
       EXPECT_FALSE(r.blew_up());
       EXPECT_GT(r.cut_tets(), 0u);
     }
   }
   EXPECT_EQ(defaults, 2);
+  EXPECT_EQ(snapped, 2 * 3 * 2);
 }
 
 TEST(KerfCli, StabilityRefusesBadInputByName) {
@@ -512,7 +521,7 @@ TEST(KerfCli, LatticeCutExperimentMeetsThePapersFigure) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   kerf::v1::CutExperiment experiment;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
-  ASSERT_EQ(experiment.cuts_size(), 2);
+  ASSERT_EQ(experiment.cuts_size(), 4);  // each path as by default, then snapped
   const kerf::v1::CutReport& straight = experiment.cuts(0);
   EXPECT_EQ(straight.path(), "lattice-straight");
   EXPECT_EQ(straight.tets_before(), 576u);
@@ -520,10 +529,24 @@ TEST(KerfCli, LatticeCutExperimentMeetsThePapersFigure) {
   EXPECT_LE(straight.new_per_cut(), 5.2);  // the paper's 312 / 60
   EXPECT_EQ(straight.components(), 2u);    // cut through
   EXPECT_TRUE(straight.valid());
-  const kerf::v1::CutReport& curved = experiment.cuts(1);
+  const kerf::v1::CutReport& curved = experiment.cuts(2);
+  EXPECT_EQ(curved.path(), "lattice-curved");
   EXPECT_EQ(curved.components(), 1u);  // a crack 2 cm deep
   EXPECT_GT(curved.case_iii() + curved.case_iv() + curved.case_v(), 0u);
   EXPECT_TRUE(curved.valid());
+  for (const int k : {1, 3}) {
+    const kerf::v1::CutReport& snapped = experiment.cuts(k);
+    const kerf::v1::CutReport& unsnapped = experiment.cuts(k - 1);
+    SCOPED_TRACE(snapped.path());
+    EXPECT_EQ(snapped.path(), unsnapped.path());
+    EXPECT_EQ(snapped.mode(), "deferred");
+    EXPECT_EQ(snapped.snap_fraction(), 0.2);
+    EXPECT_TRUE(snapped.valid());
+    EXPECT_EQ(snapped.components(), unsnapped.components());
+    EXPECT_EQ(snapped.dropped_hits(), 0u);
+    EXPECT_LE(snapped.slivers(), unsnapped.slivers());
+    EXPECT_LE(snapped.new_tets(), unsnapped.new_tets());
+  }
   EXPECT_EQ(Kerf("experiment nothing").exit_code, 1);
 }
 
