@@ -51,7 +51,7 @@ void ExplicitIntegrator::Step(double dt, DynamicState* state) {
     if (beta != 0) {
       for (const std::uint32_t j : sleeping_->border()) damped_u_[j] = state->displacement[j];
     }
-    model_->MultiplyStiffnessOver(active, sleeping_->awake_edges(), *w, elastic_);
+    sleeping_->MultiplyStiffness(*w, elastic_);
   }
   const double keep = 1 - dt * alpha;
   for (const std::uint32_t i : active) {

@@ -55,7 +55,7 @@ void ImplicitIntegrator::Force(const std::vector<Eigen::Vector3d>& w,
   if (sleeping_ == nullptr) {
     forces_.Force(w, *f);
   } else {
-    model_->MultiplyStiffnessOver(sleeping_->awake(), sleeping_->awake_edges(), w, *f);
+    sleeping_->MultiplyStiffness(w, *f);
   }
 }
 

@@ -52,9 +52,11 @@ class SleepingVertices {
   std::span<const std::uint32_t> awake() const { return awake_; }
   // The sleeping vertices with an awake neighbour: read by the awake vertices' rows.
   std::span<const std::uint32_t> border() const { return border_; }
-  // The edges at awake vertices, each once (indices into the model's edges(), valid until the
-  // model next syncs: a refresh rebuilds them): for TensorMassModel::MultiplyStiffnessOver.
-  std::span<const std::uint32_t> awake_edges() const { return awake_edges_; }
+  // The awake rows of K u (f elsewhere untouched; u read at the awake vertices and the border),
+  // over the edges at awake vertices. O(awake edges).
+  void MultiplyStiffness(std::span<const Eigen::Vector3d> u, std::span<Eigen::Vector3d> f) const {
+    model_->MultiplyStiffnessOver(awake_, awake_edges_, u, f);
+  }
   bool asleep(std::uint32_t i) const { return i < asleep_.size() && asleep_[i]; }
   // Whether the awake set changed in the last Refresh or Update.
   bool changed() const { return changed_; }
