@@ -174,6 +174,27 @@ TEST(Cutter, DegenerateBladesLeaveAValidMesh) {
   }
 }
 
+// The bar cut deferred with `snap_fraction` by a blade from (x, -5 mm, z_tip) to
+// (x, -5 mm, z_heel) swept 30 mm along y; valid and of the same volume after every pose and at
+// the end.
+struct SnappedBar {
+  TetMesh mesh;
+  CutStatistics statistics;
+};
+SnappedBar CutBarAlongY(double snap_fraction, double x, double z_tip, double z_heel) {
+  SnappedBar bar{Bar(), {}};
+  const double volume = RestVolume(bar.mesh);
+  Cutter cutter = *Cutter::Create(&bar.mesh, 0.01, {}, CutMode::kDeferred,
+                                  kDefaultMinTemporaryHeight, snap_fraction);
+  double time = 0;
+  Sweep(cutter, bar.mesh, {x, -0.005, z_tip}, {x, -0.005, z_heel}, {0, 0.03, 0}, &time);
+  cutter.Finish();
+  EXPECT_TRUE(mesh::FindMeshDefects(bar.mesh).empty()) << mesh::ValidateMesh(bar.mesh);
+  EXPECT_NEAR(RestVolume(bar.mesh), volume, 1e-12 * volume);
+  bar.statistics = cutter.statistics();
+  return bar;
+}
+
 // Snapping (deferred): a blade 1.2 mm (0.12 of an edge) past the plane of vertices x = 30 mm
 // cuts through those vertices instead: each cut tet becomes one tet with copies on the far
 // side, so no new shape (and no sliver) appears; without snapping the same blade makes slivers.
@@ -192,18 +213,11 @@ TEST(Snapping, ACutNearAPlaneOfVerticesGoesThroughThemAndMakesNoNewShape) {
   const TetMesh uncut = Bar();
   for (const double snap : {0.0, 0.2}) {
     SCOPED_TRACE(snap);
-    TetMesh m = uncut;
-    const std::uint32_t original_vertices = m.vertex_index_bound();
-    const double volume = RestVolume(m);
-    Cutter cutter =
-        *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred, kDefaultMinTemporaryHeight, snap);
-    double time = 0;
-    Sweep(cutter, m, {0.0312, -0.005, -0.005}, {0.0312, -0.005, 0.025}, {0, 0.03, 0}, &time);
-    cutter.Finish();
-    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    const std::uint32_t original_vertices = uncut.vertex_index_bound();
+    const SnappedBar bar = CutBarAlongY(snap, 0.0312, -0.005, 0.025);
+    const TetMesh& m = bar.mesh;
     EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);  // cut through either way
-    const CutStatistics& s = cutter.statistics();
+    const CutStatistics& s = bar.statistics;
     EXPECT_EQ(s.dropped_hits, 0u);
     if (snap == 0) {
       EXPECT_EQ(s.snapped_vertices, 0u);
@@ -233,21 +247,11 @@ TEST(Snapping, ACutNearAPlaneOfVerticesGoesThroughThemAndMakesNoNewShape) {
 TEST(Snapping, ABladeExactlyThroughVerticesCutsThroughThem) {
   for (const double snap : {0.0, 0.2}) {
     SCOPED_TRACE(snap);
-    TetMesh m = Bar();
-    const double volume = RestVolume(m);
-    Cutter cutter =
-        *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred, kDefaultMinTemporaryHeight, snap);
-    double time = 0;
-    Sweep(cutter, m, {0.03, -0.005, -0.005}, {0.03, -0.005, 0.025}, {0, 0.03, 0}, &time);
-    cutter.Finish();
-    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
-    const CutStatistics& s = cutter.statistics();
-    std::printf(
-        "exactly through vertices, snap %g: %zu cut, %zu degenerate, %zu snapped, %zu unsnapped, "
-        "%zu hits, %zu dropped\n",
-        snap, s.cut_tets, s.degenerate_hits, s.snapped_vertices, s.unsnapped_vertices,
-        s.snapped_hits, s.dropped_hits);
+    const SnappedBar bar = CutBarAlongY(snap, 0.03, -0.005, 0.025);
+    const TetMesh& m = bar.mesh;
+    const CutStatistics& s = bar.statistics;
+    std::printf("exactly through vertices, snap %g: %zu cut, %zu degenerate, %zu snapped\n", snap,
+                s.cut_tets, s.degenerate_hits, s.snapped_vertices);
     if (snap == 0) {
       EXPECT_GT(s.degenerate_hits, 0u);
       EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
@@ -266,19 +270,12 @@ TEST(Snapping, AVertexThatCannotBeSplitWithTheCrackIsUnsnapped) {
   std::size_t cut_without = 0;
   for (const double snap : {0.0, 0.2}) {
     SCOPED_TRACE(snap);
-    TetMesh m = Bar();
-    const double volume = RestVolume(m);
-    const double area = BoundaryArea(m);
-    Cutter cutter =
-        *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred, kDefaultMinTemporaryHeight, snap);
-    double time = 0;
+    const double area = BoundaryArea(Bar());
     // The tip runs 9.3 mm deep, 1.2 mm past the plane x = 30 mm; the heel stays above the bar.
-    Sweep(cutter, m, {0.0312, -0.005, 0.0107}, {0.0312, -0.005, 0.03}, {0, 0.03, 0}, &time);
-    cutter.Finish();
-    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    const SnappedBar bar = CutBarAlongY(snap, 0.0312, 0.0107, 0.03);
+    const TetMesh& m = bar.mesh;
     EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
-    const CutStatistics& s = cutter.statistics();
+    const CutStatistics& s = bar.statistics;
     EXPECT_EQ(s.dropped_hits, 0u);
     std::printf("crack near vertices, snap %g: %zu cut, %zu new, %zu snapped, %zu unsnapped\n",
                 snap, s.cut_tets, s.new_tets, s.snapped_vertices, s.unsnapped_vertices);
