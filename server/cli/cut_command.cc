@@ -206,6 +206,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_snapped_vertices(static_cast<std::uint32_t>(s.snapped_vertices));
   report.set_snapped_hits(static_cast<std::uint32_t>(s.snapped_hits));
   report.set_unsnapped_vertices(static_cast<std::uint32_t>(s.unsnapped_vertices));
+  report.set_parted_vertices(static_cast<std::uint32_t>(s.parted_vertices));
   double min_angle = 0;
   std::uint32_t slivers = 0;
   bool any = false;

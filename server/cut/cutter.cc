@@ -94,6 +94,13 @@ double SmallestHeight(const mesh::TetMesh& mesh, const mesh::TetVertices& t) {
                                   mesh.rest_position(t[2]), mesh.rest_position(t[3]));
 }
 
+// Whether `cut` is pinned at a corner of the tet: a snapped crossing, whose one point is the
+// corner itself until the corner's tets part.
+bool IsPinned(const mesh::TetVertices& corners, const EdgeCut& cut) {
+  return cut.near_a == cut.near_b &&
+         (cut.near_a == corners[cut.corner_a] || cut.near_a == corners[cut.corner_b]);
+}
+
 }  // namespace
 
 int ProgressiveCase(int edges, int faces, int temporary_faces, bool tip_inside,
@@ -434,7 +441,7 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
   }
   std::sort(snapping.begin(), snapping.end());  // deterministic order
   for (const VertexId v : snapping) {
-    snapped_.emplace(v, SnappedVertex{.copy = kNoVertex, .far = to_snap.at(v)});
+    snapped_.emplace(v, SnappedVertex{.far = to_snap.at(v)});
   }
   statistics_.snapped_vertices += snapping.size();
   for (const VertexId v : snapping) {
@@ -475,11 +482,7 @@ void Cutter::MarkEdgeBetweenSnapped(EdgeKey key, VertexId a, VertexId b) {
 }
 
 void Cutter::Unsnap(VertexId v) {
-  const auto it = snapped_.find(v);
-  if (it->second.copy != kNoVertex) {
-    (void)mesh_->RemoveVertex(it->second.copy);  // no tet uses it yet
-  }
-  snapped_.erase(it);
+  snapped_.erase(v);
   was_snapped_.insert(v);
   ++statistics_.unsnapped_vertices;
   // Its edges are cut as found, or at the other end if that is snapped and it lies on the far
@@ -507,41 +510,77 @@ void Cutter::Unsnap(VertexId v) {
   }
 }
 
-void Cutter::KeepSnappedVerticesUsed(const std::vector<mesh::TetVertices>& corners,
-                                     std::vector<std::pair<TetId, TetSplit>>* splits) const {
-  absl::flat_hash_set<TetId> split_tets;
-  for (const auto& [t, split] : *splits) split_tets.insert(t);
-  for (const auto& snapped : snapped_) {
-    const VertexId v = snapped.first, copy = snapped.second.copy;
-    if (copy == kNoVertex) continue;
-    const std::span<const TetId> around = mesh_->TetsAround(v);
-    const bool kept =
-        std::any_of(around.begin(), around.end(), [&](TetId t) { return !split_tets.contains(t); });
-    const bool in_pieces = std::any_of(splits->begin(), splits->end(), [&](const auto& entry) {
-      return std::any_of(
-          entry.second.tets.begin(), entry.second.tets.end(),
-          [&](const mesh::TetVertices& piece) { return mesh::TetHasVertex(piece, v); });
-    });
-    if (kept || in_pieces || around.empty() ||
-        !std::any_of(corners.begin(), corners.end(),
-                     [&](const mesh::TetVertices& c) { return mesh::TetHasVertex(c, v); })) {
-      continue;
-    }
-    for (auto& [t, split] : *splits) {  // the vertex goes over whole: no copy needed
-      for (mesh::TetVertices& piece : split.tets) std::replace(piece.begin(), piece.end(), copy, v);
-    }
-  }
-}
-
-void Cutter::FinishSnapped(const std::vector<mesh::TetVertices>& corners) {
+void Cutter::PartSnappedVertices(const std::vector<mesh::TetVertices>& corners) {
+  // The vertices on the crack: those snapped here, and the copies made of them. A face between
+  // two tets whose corners all are on it lies on the crack.
+  absl::flat_hash_map<VertexId, Eigen::Vector3d> parting;
   for (const mesh::TetVertices& tet : corners) {
     for (const VertexId v : tet) {
-      const auto it = snapped_.find(v);
-      if (it == snapped_.end()) continue;
-      const VertexId copy = it->second.copy;
-      if (copy != kNoVertex && mesh_->TetsAround(copy).empty()) (void)mesh_->RemoveVertex(copy);
-      snapped_.erase(it);
-      was_snapped_.insert(v);
+      if (const auto it = snapped_.find(v); it != snapped_.end())
+        parting.emplace(v, it->second.far);
+    }
+  }
+  absl::flat_hash_set<VertexId> on_crack;
+  for (const auto& entry : parting) {
+    on_crack.insert(entry.first);
+    snapped_.erase(entry.first);
+    was_snapped_.insert(entry.first);
+  }
+  std::vector<VertexId> order;
+  for (const auto& entry : parting) order.push_back(entry.first);
+  std::sort(order.begin(), order.end());  // deterministic ids for the copies
+  for (const VertexId v : order) {
+    {
+      const Eigen::Vector3d& far = parting.at(v);
+      // The tets at v joined through their faces at v, but for faces on the crack.
+      const std::vector<TetId> around(mesh_->TetsAround(v).begin(), mesh_->TetsAround(v).end());
+      std::vector<std::size_t> part(around.size());
+      std::iota(part.begin(), part.end(), 0);
+      const auto root = [&](std::size_t k) {
+        while (part[k] != k) k = part[k] = part[part[k]];
+        return k;
+      };
+      for (std::size_t a = 0; a < around.size(); ++a) {
+        for (std::size_t b = a + 1; b < around.size(); ++b) {
+          int shared = 0, shared_on_crack = 0;
+          for (const VertexId w : mesh_->tet(around[a])) {
+            if (!mesh::TetHasVertex(mesh_->tet(around[b]), w)) continue;
+            ++shared;
+            shared_on_crack += on_crack.contains(w);
+          }
+          if (shared == 3 && shared_on_crack < 3) part[root(a)] = root(b);
+        }
+      }
+      // How far each part lies towards the far side (its tets' centroids, summed).
+      absl::flat_hash_map<std::size_t, double> towards_far;
+      for (std::size_t k = 0; k < around.size(); ++k) {
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        for (const VertexId w : mesh_->tet(around[k])) centroid += mesh_->current_position(w) / 4;
+        towards_far[root(k)] += (centroid - mesh_->current_position(v)).dot(far);
+      }
+      if (towards_far.size() < 2) continue;  // the crack ends at v: it stays one
+      // The part farthest from the far side keeps v; every other part gets a copy.
+      const std::size_t keeps =
+          std::min_element(towards_far.begin(), towards_far.end(),
+                           [](const auto& x, const auto& y) { return x.second < y.second; })
+              ->first;
+      absl::flat_hash_map<std::size_t, VertexId> copy_of;
+      for (std::size_t k = 0; k < around.size(); ++k) {
+        const std::size_t r = root(k);
+        if (r == keeps) continue;
+        auto [copy, fresh] = copy_of.try_emplace(r);
+        if (fresh) {
+          copy->second = MakeVertex({v, v, v, v}, {1, 0, 0, 0});
+          on_crack.insert(copy->second);
+        }
+        mesh::TetVertices moved = mesh_->tet(around[k]);
+        std::replace(moved.begin(), moved.end(), v, copy->second);
+        (void)mesh_->RemoveTet(around[k]);
+        const absl::StatusOr<TetId> added = mesh_->AddTet(moved);
+        assert(added.ok());
+        source_tet_[*added] = SourceTet(around[k]);
+      }
+      statistics_.parted_vertices += copy_of.size();
     }
   }
 }
@@ -682,11 +721,8 @@ std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
     if (hit.along) continue;  // along the crack between two snapped vertices: not cut
     const bool i_low = Index(corners[i]) < Index(corners[j]);
     const VertexId lo = i_low ? corners[i] : corners[j], hi = i_low ? corners[j] : corners[i];
-    if (hit.at != kNoVertex) {  // snapped: the vertex stays on its side, its copy crosses
-      VertexId& copy = snapped_.at(hit.at).copy;
-      if (copy == kNoVertex) copy = MakeVertex({hit.at, hit.at, hit.at, hit.at}, {1, 0, 0, 0});
-      cuts.push_back(
-          {i_low ? i : j, i_low ? j : i, lo == hit.at ? lo : copy, hi == hit.at ? hi : copy});
+    if (hit.at != kNoVertex) {  // snapped: pinned at the vertex until its star parts
+      cuts.push_back({i_low ? i : j, i_low ? j : i, hit.at, hit.at});
       continue;
     }
     const Eigen::Vector4d weights(1 - hit.fraction, hit.fraction, 0, 0);
@@ -747,7 +783,10 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       const mesh::TetVertices corners = mesh_->tet(t);
       const std::vector<EdgeCut> cuts = EdgeCutsOf(corners);
       const std::vector<FacePoint> faces = FacePointsOf(corners);
-      if (cuts.empty() && faces.empty()) continue;  // its hits were dropped
+      if (faces.empty() && std::all_of(cuts.begin(), cuts.end(),
+                                       [&](const EdgeCut& c) { return IsPinned(corners, c); })) {
+        continue;  // its hits were dropped, or its cuts are at a snapped corner: it stays
+      }
       TetSplit split;
       if (faces.empty()) split = SplitCompletelyCutTet(corners, cuts);
       if (faces.size() == 2) split = SplitCrackedTet(corners, cuts, {faces[0], faces[1]}, rest);
@@ -767,9 +806,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
     if (failed.empty()) {
       std::vector<mesh::TetVertices> group_corners;
       for (const TetId t : group) group_corners.push_back(mesh_->tet(t));
-      KeepSnappedVerticesUsed(group_corners, &splits);
       for (auto& [t, split] : splits) {
-        const mesh::TetVertices corners = mesh_->tet(t);
         (void)mesh_->RemoveTet(t);
         for (mesh::TetVertices piece : split.tets) {
           if (SignedVolume(*mesh_, piece) < 0) std::swap(piece[2], piece[3]);
@@ -780,13 +817,14 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
         ++statistics_.cut_tets;
         statistics_.new_tets += split.tets.size();
         ++statistics_.tets_by_case[static_cast<int>(split.cut_case)];
-        for (const auto& [i, j] : mesh::kTetEdges)
-          edge_hits_.erase(MakeEdgeKey(corners[i], corners[j]));
-        for (const auto& f : mesh::kTetFaces) {
-          face_hits_.erase(MakeFaceKey(corners, f));
-        }
       }
-      FinishSnapped(group_corners);
+      for (const mesh::TetVertices& corners : group_corners) {
+        for (const auto& [i, j] : mesh::kTetEdges) {
+          edge_hits_.erase(MakeEdgeKey(corners[i], corners[j]));
+        }
+        for (const auto& f : mesh::kTetFaces) face_hits_.erase(MakeFaceKey(corners, f));
+      }
+      PartSnappedVertices(group_corners);
       break;
     }
     // A tet that cannot be split with snapped points is tried without them: its snapped

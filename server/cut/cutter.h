@@ -96,6 +96,8 @@ struct CutStatistics {
   std::size_t snapped_hits = 0;               // edge crossings taken at a snapped vertex
   // Snapped vertices taken off the crack again: a tet at them could not be split with them.
   std::size_t unsnapped_vertices = 0;
+  // Copies made where the crack through a snapped vertex parted its tets.
+  std::size_t parted_vertices = 0;
   // Progressive: crossings of an edge or face that a tet the blade is in does not have among its
   // own (made by a final subdivision beside it), skipped: it could not split them alike.
   std::size_t unrealisable_hits = 0;
@@ -294,12 +296,10 @@ class Cutter {
   // Takes `v` off the crack: its hits are as they were found (those through it skipped), and
   // it does not snap again.
   void Unsnap(mesh::VertexId v);
-  // Where every tet at a snapped vertex of the group goes to its copy's side, the pieces take
-  // the vertex itself instead (an original vertex stays in use).
-  void KeepSnappedVerticesUsed(const std::vector<mesh::TetVertices>& corners,
-                               std::vector<std::pair<mesh::TetId, TetSplit>>* splits) const;
-  // After a group split: its snapped vertices are done (their copies left out if unused).
-  void FinishSnapped(const std::vector<mesh::TetVertices>& corners);
+  // After the tets at them split: each snapped vertex among `corners` is parted, its tets
+  // joined through faces at it forming parts (the crack separates them; one part if the crack
+  // ends there). The part on its own side keeps it, each other part gets a copy.
+  void PartSnappedVertices(const std::vector<mesh::TetVertices>& corners);
   // Joins the groups of tets that share a new hit (each made a group if it was not in one).
   void Join(std::span<const mesh::TetId> tets);
   mesh::TetId GroupOf(mesh::TetId t);
@@ -336,8 +336,7 @@ class Cutter {
   // when first needed) and the direction of that side, and the vertices that snapped once
   // (they do not again).
   struct SnappedVertex {
-    mesh::VertexId copy;  // kNoVertex until made
-    Eigen::Vector3d far;  // towards the copy's side
+    Eigen::Vector3d far;  // towards the side it does not keep
   };
   absl::flat_hash_map<mesh::VertexId, SnappedVertex> snapped_;
   absl::flat_hash_set<mesh::VertexId> was_snapped_;
