@@ -571,6 +571,7 @@ void Cutter::PartSnappedVertices(const std::vector<mesh::TetVertices>& corners) 
         auto [copy, fresh] = copy_of.try_emplace(r);
         if (fresh) {
           copy->second = MakeVertex({v, v, v, v}, {1, 0, 0, 0});
+          parted_from_[copy->second] = PartedFrom(v);
           on_crack.insert(copy->second);
         }
         mesh::TetVertices moved = mesh_->tet(around[k]);

@@ -168,6 +168,13 @@ class Cutter {
   // temporary pieces. O(tets near).
   std::vector<mesh::TetVertices> TetsHoldingBlade(const BladePose& pose) const;
 
+  // The vertex `v` is a copy of, made where a crack through a snapped vertex parted it; v
+  // itself for any other vertex. O(1).
+  mesh::VertexId PartedFrom(mesh::VertexId v) const {
+    const auto it = parted_from_.find(v);
+    return it == parted_from_.end() ? v : it->second;
+  }
+
   // Whether the cutter made `t` (it replaced a cut tet).
   bool MadeByCut(mesh::TetId t) const { return source_tet_.contains(t); }
   // The share of its stiffness the elastic model gives `t`: for a temporary piece lower than
@@ -340,6 +347,7 @@ class Cutter {
   };
   absl::flat_hash_map<mesh::VertexId, SnappedVertex> snapped_;
   absl::flat_hash_set<mesh::VertexId> was_snapped_;
+  absl::flat_hash_map<mesh::VertexId, mesh::VertexId> parted_from_;  // copy -> vertex
   std::optional<BladePose> previous_;
   // The current positions, when the previous pose was applied, of the vertices then near the
   // blade (by index).

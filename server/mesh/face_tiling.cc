@@ -53,7 +53,8 @@ std::vector<Triangle> TrianglesOnFace(const TetMesh& mesh, const TetVertices& co
 }
 
 absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
-                                     const std::function<TetId(TetId)>& source_of) {
+                                     const std::function<TetId(TetId)>& source_of,
+                                     const std::function<VertexId(VertexId)>& same_as) {
   // The triangles of the cut mesh on each face (tet, local face) of the uncut one (its
   // vertices are the cut mesh's, at the same rest positions).
   absl::flat_hash_map<std::pair<std::uint32_t, int>, std::vector<Triangle>> tiles;
@@ -85,7 +86,16 @@ absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
           std::array<std::uint32_t, 3>{Index(face[0]), Index(face[1]), Index(face[2])}, Index(t),
           k);
       if (fresh) continue;
-      if (tiles[other->second] != mine) {
+      const auto canonical = [&](std::vector<Triangle> triangles) {
+        if (!same_as) return triangles;
+        for (Triangle& triangle : triangles) {
+          for (VertexId& v : triangle) v = same_as(v);
+          triangle = Sorted(triangle);
+        }
+        std::sort(triangles.begin(), triangles.end());
+        return triangles;
+      };
+      if (canonical(tiles[other->second]) != canonical(mine)) {
         return absl::FailedPreconditionError(
             absl::StrCat("face ", Describe(face), " is split differently in the pieces of tets ",
                          other->second.first, " and ", Index(t)));

@@ -25,9 +25,13 @@ std::vector<std::array<VertexId, 3>> TrianglesOnFace(const TetMesh& mesh,
                                                      std::span<const TetVertices> pieces);
 
 // `cut` is `uncut` after cutting: its vertices keep their ids and rest positions, and
-// `source_of(t)` is the tet of `uncut` that live tet t of `cut` came from. OK, or
-// FAILED_PRECONDITION naming the first face tiled wrongly. O(tets of cut + faces of uncut).
+// `source_of(t)` is the tet of `uncut` that live tet t of `cut` came from. An interior face is
+// tiled alike from both sides, or lies on the cut: alike once each vertex is taken as
+// `same_as(v)` (a vertex copied where a crack runs through it, as its original; unset: every
+// vertex as itself). OK, or FAILED_PRECONDITION naming the first face tiled wrongly.
+// O(tets of cut + faces of uncut).
 absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
-                                     const std::function<TetId(TetId)>& source_of);
+                                     const std::function<TetId(TetId)>& source_of,
+                                     const std::function<VertexId(VertexId)>& same_as = {});
 
 }  // namespace kerf::mesh

@@ -92,6 +92,29 @@ TEST_F(FaceTiling, ABoundaryFaceMaySplitAlone) {
   EXPECT_TRUE(Check().ok()) << Check();
 }
 
+// A crack along an interior face: one side's tet takes copies of the face's three vertices.
+// Only taken as the copies' originals does the face read alike from both sides.
+TEST_F(FaceTiling, AFaceOnACrackIsAlikeTakingCopiesAsTheirOriginals) {
+  const std::optional<SharedFace> shared = FindSharedFace(uncut_, true);
+  ASSERT_TRUE(shared.has_value());
+  TetVertices moved = cut_.tet(shared->b);
+  absl::flat_hash_map<VertexId, VertexId> original_of;
+  for (const int corner : kTetFaces[shared->face_of_b]) {
+    const VertexId copy = cut_.AddVertex(cut_.rest_position(moved[corner]));
+    original_of[copy] = moved[corner];
+    moved[corner] = copy;
+  }
+  ASSERT_TRUE(cut_.RemoveTet(shared->b).ok());
+  const absl::StatusOr<TetId> added = cut_.AddTet(moved);
+  ASSERT_TRUE(added.ok());
+  source_[*added] = shared->b;
+  EXPECT_TRUE(absl::StrContains(StatusMessage(Check()), "is split differently in the pieces"));
+  const absl::Status as_originals = CheckOriginalFacesTiled(
+      uncut_, cut_, [&](TetId t) { return source_.contains(t) ? source_.at(t) : t; },
+      [&](VertexId v) { return original_of.contains(v) ? original_of.at(v) : v; });
+  EXPECT_TRUE(as_originals.ok()) << as_originals;
+}
+
 TEST_F(FaceTiling, AFaceCoveredTwiceIsFound) {
   // A tet of the cut mesh added over one already there: its faces are tiled twice.
   const TetId first = *uncut_.tets().begin();
