@@ -29,9 +29,11 @@ VertexId TetMesh::AddVertex(const Eigen::Vector3d& rest_position) {
 
 VertexId TetMesh::AddVertex(const Eigen::Vector3d& rest_position,
                             const Eigen::Vector3d& current_position) {
+  // Either may be one of this mesh's own positions: copied before the lists grow.
+  const Eigen::Vector3d rest = rest_position, current = current_position;
   const auto v = static_cast<VertexId>(rest_.size());
-  rest_.push_back(rest_position);
-  current_.push_back(current_position);
+  rest_.push_back(rest);
+  current_.push_back(current);
   stars_.emplace_back();
   vertex_alive_.push_back(true);
   ++vertex_count_;

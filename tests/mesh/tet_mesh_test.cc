@@ -38,6 +38,19 @@ TEST(TetMesh, NewVertexStartsAtRestAndMovesIndependently) {
   EXPECT_DOUBLE_EQ(CurrentVolume(mesh, TetId{0}), 2.0 / 6);
 }
 
+// A vertex may be added at the position of one already there, passed by reference into the
+// mesh itself: the lists it is copied from grow as it is added (the sanitizer build reads
+// freed memory if the copy comes too late).
+TEST(TetMesh, AVertexAddedAtAnotherVertexsOwnPositionCopiesIt) {
+  TetMesh m;
+  VertexId last = m.AddVertex({0.1, 0.2, 0.3}, {0.4, 0.5, 0.6});
+  for (int k = 0; k < 100; ++k) last = m.AddVertex(m.rest_position(last), m.current_position(last));
+  EXPECT_EQ(m.rest_position(last), Eigen::Vector3d(0.1, 0.2, 0.3));
+  EXPECT_EQ(m.current_position(last), Eigen::Vector3d(0.4, 0.5, 0.6));
+  for (int k = 0; k < 100; ++k) last = m.AddVertex(m.rest_position(last));
+  EXPECT_EQ(m.current_position(last), Eigen::Vector3d(0.1, 0.2, 0.3));
+}
+
 TEST(TetMesh, IdsAreNeverReused) {
   TetMesh mesh = SingleTet();
   ASSERT_TRUE(mesh.RemoveTet(TetId{0}).ok());
