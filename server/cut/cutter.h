@@ -73,10 +73,11 @@ inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 
 // Snapping (the paper's proposal against slivers; deferred cutting): an edge crossed within
 // this fraction of its length from a vertex is taken as crossed at the vertex, which then lies
-// on the crack, and so is every other edge at it the blade crosses while its tets wait. When
-// they split, the vertex keeps its tets on its own side and a copy of it takes the other side:
-// cuts through vertices and along edges are the minimal cases with some cut points at corners
-// (their collapsed pieces left out). A vertex snaps once. 0: no snapping.
+// on the crack, and every edge from it to the side it is not on is cut at it: pinned, the cut's
+// one point the corner itself, so cuts through vertices and along edges are the minimal cases
+// with some cut points at corners (their collapsed pieces left out). When its tets have split
+// (together, in one group), the vertex is parted: the part of its tets on its own side keeps
+// it, each other part across the crack gets a copy. A vertex snaps once. 0: no snapping.
 inline constexpr double kDefaultSnapFraction = 0;
 
 // The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
@@ -293,7 +294,7 @@ class Cutter {
   // `normal`: the swept surface's, unit (zero: nothing snaps).
   void RecordEdgeCrossings(const std::vector<Crossing>& crossings, const Eigen::Vector3d& normal,
                            std::vector<EdgeKey>* new_edges);
-  // Puts each vertex on the crack, its copy to take the side its direction points to: the hits
+  // Puts each vertex on the crack, to be parted from the side its direction points to: the hits
   // waiting at it are taken at it and its tets join one group. Not a vertex with a hit waiting
   // on an edge to its own side.
   void Snap(const absl::flat_hash_map<mesh::VertexId, Eigen::Vector3d>& to_snap);
@@ -339,9 +340,8 @@ class Cutter {
   CutMode mode_;
   double min_temporary_height_;  // a fraction of the smallest height
   double snap_fraction_;         // of an edge's length
-  // Snapped vertices whose tets wait to split, with the copy that takes the far side (made
-  // when first needed) and the direction of that side, and the vertices that snapped once
-  // (they do not again).
+  // Snapped vertices whose tets wait to split, with the direction of the side they do not keep,
+  // and the vertices that snapped once (they do not again).
   struct SnappedVertex {
     Eigen::Vector3d far;  // towards the side it does not keep
   };
