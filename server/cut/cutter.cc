@@ -101,6 +101,14 @@ bool IsPinned(const mesh::TetVertices& corners, const EdgeCut& cut) {
          (cut.near_a == corners[cut.corner_a] || cut.near_a == corners[cut.corner_b]);
 }
 
+// Whether `other` lies beyond the plane through `v` across `far` (by more than `tolerance`
+// of the edge between them): on the side a snapped v does not keep.
+bool Beyond(const mesh::TetMesh& mesh, VertexId v, VertexId other, const Eigen::Vector3d& far,
+            double tolerance = 0) {
+  const Eigen::Vector3d edge = mesh.current_position(other) - mesh.current_position(v);
+  return edge.dot(far) > tolerance * edge.norm();
+}
+
 }  // namespace
 
 int ProgressiveCase(int edges, int faces, int temporary_faces, bool tip_inside,
@@ -357,10 +365,6 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
 
 void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
                                  const Eigen::Vector3d& normal, std::vector<EdgeKey>* new_edges) {
-  const auto far_side = [&](VertexId v, VertexId other) {
-    return (mesh_->current_position(other) - mesh_->current_position(v)).dot(snapped_.at(v).far) >
-           0;
-  };
   if (snap_fraction_ > 0 && normal != Eigen::Vector3d::Zero()) {
     absl::flat_hash_map<VertexId, Eigen::Vector3d> to_snap;
     for (const Crossing& c : crossings) {
@@ -403,7 +407,7 @@ void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
     if (low_snapped || high_snapped) {
       const VertexId at = low_snapped ? c.low : c.high, other = low_snapped ? c.high : c.low;
       const double from_at = low_snapped ? c.fraction : 1 - c.fraction;
-      if (far_side(at, other)) {
+      if (Beyond(*mesh_, at, other, snapped_.at(at).far)) {
         edge_hits_[c.key] = {.fraction = c.fraction, .at = at};
         ++statistics_.snapped_hits;
         new_edges->push_back(c.key);
@@ -434,7 +438,7 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
     for (const TetId t : mesh_->TetsAround(v)) {
       for (const VertexId other : mesh_->tet(t)) {
         if (other == v || on_crack(other) || !edge_hits_.contains(MakeEdgeKey(v, other))) continue;
-        own_side_hit |= (mesh_->current_position(other) - mesh_->current_position(v)).dot(far) <= 0;
+        own_side_hit |= !Beyond(*mesh_, v, other, far);
       }
     }
     if (!own_side_hit) snapping.push_back(v);
@@ -456,8 +460,7 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
           MarkEdgeBetweenSnapped(key, v, other);
           continue;
         }
-        const Eigen::Vector3d edge = mesh_->current_position(other) - mesh_->current_position(v);
-        if (edge.dot(snapped_.at(v).far) <= 1e-9 * edge.norm()) continue;
+        if (!Beyond(*mesh_, v, other, snapped_.at(v).far, 1e-9)) continue;
         if (it == edge_hits_.end()) {
           edge_hits_[key] = {
               .fraction = Index(v) < Index(other) ? 0.0 : 1.0, .at = v, .crossed = false};
@@ -494,8 +497,7 @@ void Cutter::Unsnap(VertexId v) {
       EdgeHit& h = hit->second;
       h.along = false;
       if (const auto o = snapped_.find(other);
-          o != snapped_.end() &&
-          (mesh_->current_position(v) - mesh_->current_position(other)).dot(o->second.far) > 0) {
+          o != snapped_.end() && Beyond(*mesh_, other, v, o->second.far)) {
         h.at = other;
         continue;
       }
@@ -513,76 +515,72 @@ void Cutter::Unsnap(VertexId v) {
 void Cutter::PartSnappedVertices(const std::vector<mesh::TetVertices>& corners) {
   // The vertices on the crack: those snapped here, and the copies made of them. A face between
   // two tets whose corners all are on it lies on the crack.
-  absl::flat_hash_map<VertexId, Eigen::Vector3d> parting;
+  std::vector<std::pair<VertexId, Eigen::Vector3d>> parting;  // with the side each gives up
+  absl::flat_hash_set<VertexId> on_crack;
   for (const mesh::TetVertices& tet : corners) {
     for (const VertexId v : tet) {
-      if (const auto it = snapped_.find(v); it != snapped_.end())
-        parting.emplace(v, it->second.far);
+      const auto it = snapped_.find(v);
+      if (it == snapped_.end()) continue;
+      parting.emplace_back(v, it->second.far);
+      on_crack.insert(v);
+      snapped_.erase(it);
+      was_snapped_.insert(v);
     }
   }
-  absl::flat_hash_set<VertexId> on_crack;
-  for (const auto& entry : parting) {
-    on_crack.insert(entry.first);
-    snapped_.erase(entry.first);
-    was_snapped_.insert(entry.first);
-  }
-  std::vector<VertexId> order;
-  for (const auto& entry : parting) order.push_back(entry.first);
-  std::sort(order.begin(), order.end());  // deterministic ids for the copies
-  for (const VertexId v : order) {
-    {
-      const Eigen::Vector3d& far = parting.at(v);
-      // The tets at v joined through their faces at v, but for faces on the crack.
-      const std::vector<TetId> around(mesh_->TetsAround(v).begin(), mesh_->TetsAround(v).end());
-      std::vector<std::size_t> part(around.size());
-      std::iota(part.begin(), part.end(), 0);
-      const auto root = [&](std::size_t k) {
-        while (part[k] != k) k = part[k] = part[part[k]];
-        return k;
-      };
-      for (std::size_t a = 0; a < around.size(); ++a) {
-        for (std::size_t b = a + 1; b < around.size(); ++b) {
-          int shared = 0, shared_on_crack = 0;
-          for (const VertexId w : mesh_->tet(around[a])) {
-            if (!mesh::TetHasVertex(mesh_->tet(around[b]), w)) continue;
-            ++shared;
-            shared_on_crack += on_crack.contains(w);
-          }
-          if (shared == 3 && shared_on_crack < 3) part[root(a)] = root(b);
+  // Deterministic ids for the copies.
+  std::sort(parting.begin(), parting.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (const auto& [v, far] : parting) {
+    // The tets at v joined through their faces at v, but for faces on the crack.
+    const std::vector<TetId> around(mesh_->TetsAround(v).begin(), mesh_->TetsAround(v).end());
+    std::vector<std::size_t> part(around.size());
+    std::iota(part.begin(), part.end(), 0);
+    const auto root = [&](std::size_t k) {
+      while (part[k] != k) k = part[k] = part[part[k]];
+      return k;
+    };
+    for (std::size_t a = 0; a < around.size(); ++a) {
+      for (std::size_t b = a + 1; b < around.size(); ++b) {
+        int shared = 0, shared_on_crack = 0;
+        for (const VertexId w : mesh_->tet(around[a])) {
+          if (!mesh::TetHasVertex(mesh_->tet(around[b]), w)) continue;
+          ++shared;
+          shared_on_crack += on_crack.contains(w);
         }
+        if (shared == 3 && shared_on_crack < 3) part[root(a)] = root(b);
       }
-      // How far each part lies towards the far side (its tets' centroids, summed).
-      absl::flat_hash_map<std::size_t, double> towards_far;
-      for (std::size_t k = 0; k < around.size(); ++k) {
-        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-        for (const VertexId w : mesh_->tet(around[k])) centroid += mesh_->current_position(w) / 4;
-        towards_far[root(k)] += (centroid - mesh_->current_position(v)).dot(far);
-      }
-      if (towards_far.size() < 2) continue;  // the crack ends at v: it stays one
-      // The part farthest from the far side keeps v; every other part gets a copy.
-      const std::size_t keeps =
-          std::min_element(towards_far.begin(), towards_far.end(),
-                           [](const auto& x, const auto& y) { return x.second < y.second; })
-              ->first;
-      absl::flat_hash_map<std::size_t, VertexId> copy_of;
-      for (std::size_t k = 0; k < around.size(); ++k) {
-        const std::size_t r = root(k);
-        if (r == keeps) continue;
-        auto [copy, fresh] = copy_of.try_emplace(r);
-        if (fresh) {
-          copy->second = MakeVertex({v, v, v, v}, {1, 0, 0, 0});
-          parted_from_[copy->second] = PartedFrom(v);
-          on_crack.insert(copy->second);
-        }
-        mesh::TetVertices moved = mesh_->tet(around[k]);
-        std::replace(moved.begin(), moved.end(), v, copy->second);
-        (void)mesh_->RemoveTet(around[k]);
-        const absl::StatusOr<TetId> added = mesh_->AddTet(moved);
-        assert(added.ok());
-        source_tet_[*added] = SourceTet(around[k]);
-      }
-      statistics_.parted_vertices += copy_of.size();
     }
+    // How far each part lies towards the far side (its tets' centroids, summed).
+    absl::flat_hash_map<std::size_t, double> towards_far;
+    for (std::size_t k = 0; k < around.size(); ++k) {
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (const VertexId w : mesh_->tet(around[k])) centroid += mesh_->current_position(w) / 4;
+      towards_far[root(k)] += (centroid - mesh_->current_position(v)).dot(far);
+    }
+    if (towards_far.size() < 2) continue;  // the crack ends at v: it stays one
+    // The part farthest from the far side keeps v; every other part gets a copy.
+    const std::size_t keeps =
+        std::min_element(towards_far.begin(), towards_far.end(), [](const auto& x, const auto& y) {
+          return x.second < y.second;
+        })->first;
+    absl::flat_hash_map<std::size_t, VertexId> copy_of;
+    for (std::size_t k = 0; k < around.size(); ++k) {
+      const std::size_t r = root(k);
+      if (r == keeps) continue;
+      auto [copy, fresh] = copy_of.try_emplace(r);
+      if (fresh) {
+        copy->second = MakeVertex({v, v, v, v}, {1, 0, 0, 0});
+        parted_from_[copy->second] = PartedFrom(v);
+        on_crack.insert(copy->second);
+      }
+      mesh::TetVertices moved = mesh_->tet(around[k]);
+      std::replace(moved.begin(), moved.end(), v, copy->second);
+      (void)mesh_->RemoveTet(around[k]);
+      const absl::StatusOr<TetId> added = mesh_->AddTet(moved);
+      assert(added.ok());
+      source_tet_[*added] = SourceTet(around[k]);
+    }
+    statistics_.parted_vertices += copy_of.size();
   }
 }
 
