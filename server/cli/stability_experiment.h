@@ -3,8 +3,8 @@
 // liver of ../shared/meshes when its file is given) is cut live (sim/live_cut.h) by each
 // integrator (explicit at 0.9 of the critical step re-estimated after every cut, explicit in
 // sub-steps of 1 ms, backward Euler at 1 ms) with each elastic law (linear, corotational),
-// cut progressively (the default), deferred, and deferred with snapping at kStabilitySnapFraction
-// (progressive cutting does not snap yet).
+// cut progressively (the default) and deferred, each without and with snapping at
+// kStabilitySnapFraction.
 #pragma once
 
 #include <string>

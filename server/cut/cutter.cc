@@ -151,10 +151,6 @@ absl::StatusOr<Cutter> Cutter::Create(mesh::TetMesh* mesh, double cell_size,
     return absl::InvalidArgumentError(
         absl::StrCat("the snap fraction must be in [0, 0.5), got ", snap_fraction));
   }
-  if (snap_fraction > 0 && mode != CutMode::kDeferred) {
-    return absl::InvalidArgumentError(
-        "snapping is made for deferred cutting only (progressive cutting does not snap yet)");
-  }
   absl::StatusOr<TetGrid> grid = TetGrid::Build(*mesh, cell_size, 0.25 * cell_size);
   if (!grid.ok()) return grid.status();
   return Cutter(mesh, *std::move(grid), cell_size, limits, mode, min_temporary_height,
@@ -238,6 +234,22 @@ std::vector<TetId> Cutter::TetsWith(std::span<const VertexId> vertices) const {
   std::sort(tets.begin(), tets.end());
   tets.erase(std::unique(tets.begin(), tets.end()), tets.end());
   return tets;
+}
+
+std::vector<TetId> Cutter::OwnersAt(VertexId v) const {
+  std::vector<TetId> owners;
+  for (const TetId t : mesh_->TetsAround(v)) {
+    const TetId owner = OwnerOf(t);
+    if (mesh::TetHasVertex(mesh_->tet_even_if_removed(owner), v)) owners.push_back(owner);
+  }
+  std::sort(owners.begin(), owners.end());
+  owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+  return owners;
+}
+
+bool Cutter::IsCutEdge(VertexId a, VertexId b) const {
+  const auto it = edge_hits_.find(MakeEdgeKey(a, b));
+  return it != edge_hits_.end() && !it->second.along;
 }
 
 absl::Status Cutter::RememberPositionsNear(const BladePose& pose) {
@@ -414,7 +426,10 @@ void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
         continue;
       }
       if (from_at < kDegenerate) continue;  // it touches the crack at the vertex, on its side
-      Unsnap(at);  // crossed on the vertex's own side: the crack bends there; no snapping
+      // Crossed on the vertex's own side: the crack bends there. The vertex is taken off the
+      // crack, unless a tet split through it for good (progressive): then the crossing is cut
+      // as found beside it.
+      if (mode_ == CutMode::kDeferred || !committed_.contains(at)) Unsnap(at);
     }
     if (c.fraction < kDegenerate || c.fraction > 1 - kDegenerate) {
       ++statistics_.degenerate_hits;
@@ -428,20 +443,30 @@ void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
 }
 
 void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap) {
-  assert(mode_ == CutMode::kDeferred);
   const auto on_crack = [&](VertexId v) { return snapped_.contains(v) || to_snap.contains(v); };
   // Every edge from a snapped vertex to the far side is cut at it, and one between two lies
-  // along the crack. A hit waiting on an edge to its own side keeps a vertex off the crack.
+  // along the crack. A hit waiting on an edge to its own side keeps a vertex off the crack;
+  // so does, progressive, a cut at it already made or a face at it split for good (its tets
+  // would split differently from their neighbours).
   std::vector<VertexId> snapping;
   for (const auto& [v, far] : to_snap) {
-    bool own_side_hit = false;
-    for (const TetId t : mesh_->TetsAround(v)) {
-      for (const VertexId other : mesh_->tet(t)) {
-        if (other == v || on_crack(other) || !edge_hits_.contains(MakeEdgeKey(v, other))) continue;
-        own_side_hit |= !Beyond(*mesh_, v, other, far);
+    bool keeps_off = false;
+    for (const TetId t : OwnersAt(v)) {
+      const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
+      for (const VertexId other : corners) {
+        const auto hit = edge_hits_.find(MakeEdgeKey(v, other));
+        if (other == v || hit == edge_hits_.end()) continue;
+        keeps_off |= hit->second.near_low != kNoVertex;
+        if (!on_crack(other)) keeps_off |= !Beyond(*mesh_, v, other, far);
+      }
+      for (const auto& f : mesh::kTetFaces) {
+        const FaceKey face = MakeFaceKey(corners, f);
+        if (std::find(face.begin(), face.end(), v) != face.end()) {
+          keeps_off |= settled_faces_.contains(face);
+        }
       }
     }
-    if (!own_side_hit) snapping.push_back(v);
+    if (!keeps_off) snapping.push_back(v);
   }
   std::sort(snapping.begin(), snapping.end());  // deterministic order
   for (const VertexId v : snapping) {
@@ -449,9 +474,9 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
   }
   statistics_.snapped_vertices += snapping.size();
   for (const VertexId v : snapping) {
-    const std::vector<TetId> around(mesh_->TetsAround(v).begin(), mesh_->TetsAround(v).end());
+    const std::vector<TetId> around = OwnersAt(v);
     for (const TetId t : around) {
-      for (const VertexId other : mesh_->tet(t)) {
+      for (const VertexId other : mesh_->tet_even_if_removed(t)) {
         if (other == v) continue;
         const EdgeKey key = MakeEdgeKey(v, other);
         const auto it = edge_hits_.find(key);
@@ -471,7 +496,11 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
         }
       }
     }
-    Join(around);  // they split together, so the copy takes the far side at once
+    if (mode_ == CutMode::kDeferred) {
+      Join(around);  // they split together, so the copy takes the far side at once
+    } else {
+      for (const TetId t : around) open_.try_emplace(t);  // parted once all are final
+    }
   }
 }
 
@@ -484,14 +513,21 @@ void Cutter::MarkEdgeBetweenSnapped(EdgeKey key, VertexId a, VertexId b) {
   if (!hit.crossed) hit.fraction = 0;  // at the lower id's end
 }
 
+void Cutter::Commit(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts) {
+  for (const EdgeCut& cut : cuts) {
+    if (IsPinned(corners, cut)) committed_.insert(cut.near_a);
+  }
+}
+
 void Cutter::Unsnap(VertexId v) {
+  assert(!committed_.contains(v));
   snapped_.erase(v);
   was_snapped_.insert(v);
   ++statistics_.unsnapped_vertices;
   // Its edges are cut as found, or at the other end if that is snapped and it lies on the far
   // side there.
-  for (const TetId t : mesh_->TetsAround(v)) {
-    for (const VertexId other : mesh_->tet(t)) {
+  for (const TetId t : OwnersAt(v)) {
+    for (const VertexId other : mesh_->tet_even_if_removed(t)) {
       const auto hit = edge_hits_.find(MakeEdgeKey(v, other));
       if (other == v || hit == edge_hits_.end()) continue;
       EdgeHit& h = hit->second;
@@ -507,81 +543,142 @@ void Cutter::Unsnap(VertexId v) {
       } else if (h.fraction < kDegenerate || h.fraction > 1 - kDegenerate) {
         edge_hits_.erase(hit);  // through a vertex itself: skipped, as unsnapped
         ++statistics_.degenerate_hits;
+      } else if (mode_ == CutMode::kProgressive) {
+        const std::array<VertexId, 2> ends = {v, other};  // every tet at a hit is open
+        for (const TetId owner : TetsWith(ends)) open_.try_emplace(owner);
       }
     }
   }
 }
 
-void Cutter::PartSnappedVertices(const std::vector<mesh::TetVertices>& corners) {
-  // The vertices on the crack: those snapped here, and the copies made of them. A face between
-  // two tets whose corners all are on it lies on the crack.
-  std::vector<std::pair<VertexId, Eigen::Vector3d>> parting;  // with the side each gives up
-  absl::flat_hash_set<VertexId> on_crack;
-  for (const mesh::TetVertices& tet : corners) {
-    for (const VertexId v : tet) {
-      const auto it = snapped_.find(v);
-      if (it == snapped_.end()) continue;
-      parting.emplace_back(v, it->second.far);
-      on_crack.insert(v);
-      snapped_.erase(it);
-      was_snapped_.insert(v);
-    }
+void Cutter::PartSnappedVertices(std::vector<VertexId> vertices) {
+  std::sort(vertices.begin(), vertices.end());  // deterministic ids for the copies
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  for (const VertexId v : vertices) {
+    const auto it = snapped_.find(v);
+    assert(it != snapped_.end());
+    parted_.emplace(v, it->second.far);
+    snapped_.erase(it);
+    was_snapped_.insert(v);
   }
-  // Deterministic ids for the copies.
-  std::sort(parting.begin(), parting.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
-  for (const auto& [v, far] : parting) {
-    // The tets at v joined through their faces at v, but for faces on the crack.
-    const std::vector<TetId> around(mesh_->TetsAround(v).begin(), mesh_->TetsAround(v).end());
-    std::vector<std::size_t> part(around.size());
-    std::iota(part.begin(), part.end(), 0);
-    const auto root = [&](std::size_t k) {
-      while (part[k] != k) k = part[k] = part[part[k]];
-      return k;
-    };
-    for (std::size_t a = 0; a < around.size(); ++a) {
-      for (std::size_t b = a + 1; b < around.size(); ++b) {
-        int shared = 0, shared_on_crack = 0;
-        for (const VertexId w : mesh_->tet(around[a])) {
-          if (!mesh::TetHasVertex(mesh_->tet(around[b]), w)) continue;
-          ++shared;
-          shared_on_crack += on_crack.contains(w);
+  // A vertex on the crack whose star parted may let a neighbour on the crack part too (or
+  // again): its star was joined through a face the parting took apart (progressive cutting
+  // parts vertices one by one, as their tets become final).
+  std::vector<VertexId> queue = vertices;
+  absl::flat_hash_set<VertexId> queued(vertices.begin(), vertices.end());
+  for (std::size_t next = 0; next < queue.size(); ++next) {
+    const VertexId v = queue[next];
+    queued.erase(v);
+    const std::vector<VertexId> copies = PartStar(v);
+    if (copies.empty()) continue;
+    std::vector<VertexId> neighbours;
+    for (const VertexId x : copies) {
+      for (const TetId t : mesh_->TetsAround(x)) {
+        for (const VertexId w : mesh_->tet(t)) {
+          if (!snapped_.contains(w) && parted_.contains(PartedFrom(w))) neighbours.push_back(w);
         }
-        if (shared == 3 && shared_on_crack < 3) part[root(a)] = root(b);
       }
     }
-    // How far each part lies towards the far side (its tets' centroids, summed).
-    absl::flat_hash_map<std::size_t, double> towards_far;
-    for (std::size_t k = 0; k < around.size(); ++k) {
-      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-      for (const VertexId w : mesh_->tet(around[k])) centroid += mesh_->current_position(w) / 4;
-      towards_far[root(k)] += (centroid - mesh_->current_position(v)).dot(far);
+    std::sort(neighbours.begin(), neighbours.end());
+    for (const VertexId w : neighbours) {
+      if (queued.insert(w).second) queue.push_back(w);
     }
-    if (towards_far.size() < 2) continue;  // the crack ends at v: it stays one
-    // The part farthest from the far side keeps v; every other part gets a copy.
-    const std::size_t keeps =
-        std::min_element(towards_far.begin(), towards_far.end(), [](const auto& x, const auto& y) {
-          return x.second < y.second;
-        })->first;
-    absl::flat_hash_map<std::size_t, VertexId> copy_of;
-    for (std::size_t k = 0; k < around.size(); ++k) {
-      const std::size_t r = root(k);
-      if (r == keeps) continue;
-      auto [copy, fresh] = copy_of.try_emplace(r);
-      if (fresh) {
-        copy->second = MakeVertex({v, v, v, v}, {1, 0, 0, 0});
-        parted_from_[copy->second] = PartedFrom(v);
-        on_crack.insert(copy->second);
-      }
-      mesh::TetVertices moved = mesh_->tet(around[k]);
-      std::replace(moved.begin(), moved.end(), v, copy->second);
-      (void)mesh_->RemoveTet(around[k]);
-      const absl::StatusOr<TetId> added = mesh_->AddTet(moved);
-      assert(added.ok());
-      source_tet_[*added] = SourceTet(around[k]);
-    }
-    statistics_.parted_vertices += copy_of.size();
   }
+}
+
+std::vector<VertexId> Cutter::PartStar(VertexId v) {
+  // A face between two tets whose corners all are on the crack (snapped, parted, or copies of
+  // parted ones) lies on it. The tets at v joined through their faces at v, but for those,
+  // form its parts.
+  const auto on_crack = [&](VertexId w) {
+    return snapped_.contains(w) || parted_.contains(PartedFrom(w));
+  };
+  const std::vector<TetId> around(mesh_->TetsAround(v).begin(), mesh_->TetsAround(v).end());
+  std::vector<std::size_t> part(around.size());
+  std::iota(part.begin(), part.end(), 0);
+  const auto root = [&](std::size_t k) {
+    while (part[k] != k) k = part[k] = part[part[k]];
+    return k;
+  };
+  for (std::size_t a = 0; a < around.size(); ++a) {
+    for (std::size_t b = a + 1; b < around.size(); ++b) {
+      int shared = 0, shared_on_crack = 0;
+      for (const VertexId w : mesh_->tet(around[a])) {
+        if (!mesh::TetHasVertex(mesh_->tet(around[b]), w)) continue;
+        ++shared;
+        shared_on_crack += on_crack(w);
+      }
+      if (shared == 3 && shared_on_crack < 3) part[root(a)] = root(b);
+    }
+  }
+  // How far each part lies towards the side v gives up (a copy keeps that side): its tets'
+  // centroids, summed.
+  const Eigen::Vector3d far =
+      PartedFrom(v) == v ? parted_.at(v) : Eigen::Vector3d(-parted_.at(PartedFrom(v)));
+  absl::flat_hash_map<std::size_t, double> towards_far;
+  for (std::size_t k = 0; k < around.size(); ++k) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const VertexId w : mesh_->tet(around[k])) centroid += mesh_->current_position(w) / 4;
+    towards_far[root(k)] += (centroid - mesh_->current_position(v)).dot(far);
+  }
+  if (towards_far.size() < 2) return {};  // the crack ends at v: it stays one
+  // The part farthest from the far side keeps v; every other part gets a copy.
+  const std::size_t keeps =
+      std::min_element(towards_far.begin(), towards_far.end(), [](const auto& x, const auto& y) {
+        return x.second < y.second;
+      })->first;
+  absl::flat_hash_map<std::size_t, VertexId> copy_of;
+  std::vector<VertexId> copies;
+  for (std::size_t k = 0; k < around.size(); ++k) {
+    const std::size_t r = root(k);
+    if (r == keeps) continue;
+    auto [copy, fresh] = copy_of.try_emplace(r);
+    if (fresh) {
+      copy->second = MakeVertex({v, v, v, v}, {1, 0, 0, 0});
+      parted_from_[copy->second] = PartedFrom(v);
+      copies.push_back(copy->second);
+    }
+    mesh::TetVertices moved = mesh_->tet(around[k]);
+    std::replace(moved.begin(), moved.end(), v, copy->second);
+    for (const auto& f : mesh::kTetFaces) {  // a face split for good stays so
+      FaceKey face = MakeFaceKey(mesh_->tet(around[k]), f);
+      if (!settled_faces_.contains(face)) continue;
+      std::replace(face.begin(), face.end(), v, copy->second);
+      settled_faces_.insert(MakeFaceKey(face[0], face[1], face[2]));
+    }
+    (void)mesh_->RemoveTet(around[k]);
+    const absl::StatusOr<TetId> added = mesh_->AddTet(moved);
+    assert(added.ok());
+    source_tet_[*added] = SourceTet(around[k]);
+  }
+  statistics_.parted_vertices += copies.size();
+  if (!copies.empty()) copies.push_back(v);  // its own star changed too
+  return copies;
+}
+
+void Cutter::PartFinishedSnappedVertices() {
+  // Those no open tet has as a corner or in its pieces: every tet at them is final.
+  absl::flat_hash_set<VertexId> waiting;
+  for (const auto& [t, open] : open_) {
+    for (const VertexId v : mesh_->tet_even_if_removed(t)) waiting.insert(v);
+    for (const TetId piece : open.pieces) {
+      for (const VertexId v : mesh_->tet(piece)) waiting.insert(v);
+    }
+  }
+  std::vector<VertexId> finished;
+  for (const auto& [v, snapped] : snapped_) {
+    if (!waiting.contains(v)) finished.push_back(v);
+  }
+  if (finished.empty()) return;
+  PartSnappedVertices(finished);
+  // Their hits (kept while they waited, see ForgetHitsOf) served the splits made.
+  const absl::flat_hash_set<VertexId> parted(finished.begin(), finished.end());
+  absl::erase_if(edge_hits_, [&](const auto& entry) {
+    const auto& [key, hit] = entry;
+    const bool at_parted = parted.contains(VertexId(static_cast<std::uint32_t>(key >> 32))) ||
+                           parted.contains(VertexId(static_cast<std::uint32_t>(key)));
+    return at_parted && (hit.along || parted.contains(hit.at));
+  });
 }
 
 TetId Cutter::GroupOf(TetId t) {
@@ -823,7 +920,13 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
         }
         for (const auto& f : mesh::kTetFaces) face_hits_.erase(MakeFaceKey(corners, f));
       }
-      PartSnappedVertices(group_corners);
+      std::vector<VertexId> snapped;
+      for (const mesh::TetVertices& corners : group_corners) {
+        for (const VertexId v : corners) {
+          if (snapped_.contains(v)) snapped.push_back(v);
+        }
+      }
+      PartSnappedVertices(std::move(snapped));
       break;
     }
     // A tet that cannot be split with snapped points is tried without them: its snapped
@@ -866,6 +969,14 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
 void Cutter::UpdateOpenTets(const BladePose* pose) {
   const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
   const auto current = [&](VertexId v) { return mesh_->current_position(v); };
+  // Every tet at a hit is open, as for any hit, while its snapped vertex waits (a tet whose cuts
+  // are all pinned is closed as soon as the blade is not in it, and the blade may come back).
+  for (const auto& [key, hit] : edge_hits_) {
+    if (hit.at == kNoVertex && !hit.along) continue;
+    const std::array<VertexId, 2> ends = {VertexId(static_cast<std::uint32_t>(key >> 32)),
+                                          VertexId(static_cast<std::uint32_t>(key))};
+    for (const TetId t : TetsWith(ends)) open_.try_emplace(t);
+  }
   while (true) {  // again after a tet the blade left is frozen or has its hits dropped
     last_pose_ = {};
     std::vector<TetId> tets;
@@ -936,6 +1047,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     std::vector<Plan> plans;
     std::vector<TetId> failed_final;
     bool failed_temporary = false;
+    std::vector<TetId> failed;  // temporary or final
     // Where the blade edge crosses each face, found once per face so both its tets agree.
     absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>
         crossing_of;
@@ -964,8 +1076,11 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       const std::vector<EdgeCut> cuts = EdgeCutsOf(corners, &edges_given, pose, temporary_point);
       const bool opens = std::any_of(cuts.begin(), cuts.end(),
                                      [](const EdgeCut& c) { return c.near_a != c.near_b; });
-      inside = inside || std::any_of(cuts.begin(), cuts.end(),
-                                     [](const EdgeCut& c) { return c.near_a == c.near_b; });
+      const auto pinned = [&](const EdgeCut& c) { return IsPinned(corners, c); };
+      const bool all_pinned = std::all_of(cuts.begin(), cuts.end(), pinned);
+      inside = inside || std::any_of(cuts.begin(), cuts.end(), [&](const EdgeCut& c) {
+                 return c.near_a == c.near_b && !pinned(c);
+               });
       // Face points that can open: on a face with a cut edge (a permanent one first).
       std::vector<FacePoint> used;
       Eigen::Vector4d used_sum = Eigen::Vector4d::Zero();  // their corner weights, summed
@@ -980,9 +1095,8 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           ++temporary_faces;
           if (c->barycentric.minCoeff() >= kDegenerate) crossing = c->barycentric;
         }
-        const bool cut_edge = edge_hits_.contains(MakeEdgeKey(key[0], key[1])) ||
-                              edge_hits_.contains(MakeEdgeKey(key[1], key[2])) ||
-                              edge_hits_.contains(MakeEdgeKey(key[0], key[2]));
+        const bool cut_edge =
+            IsCutEdge(key[0], key[1]) || IsCutEdge(key[1], key[2]) || IsCutEdge(key[0], key[2]);
         if (!cut_edge) continue;
         Eigen::Vector3d barycentric;
         if (hit != face_hits_.end()) {
@@ -1012,17 +1126,29 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       if (inside) {
         tip_weights = TetBarycentric(current(corners[0]), current(corners[1]), current(corners[2]),
                                      current(corners[3]), pose->tip);
+        std::vector<EdgeCut> crossed;  // the cuts but those pinned at a snapped corner
+        std::copy_if(cuts.begin(), cuts.end(), std::back_inserter(crossed),
+                     [&](const EdgeCut& c) { return !pinned(c); });
         bool share_corner = false;
-        if (cuts.size() == 2) {
-          share_corner =
-              cuts[0].corner_a == cuts[1].corner_a || cuts[0].corner_a == cuts[1].corner_b ||
-              cuts[0].corner_b == cuts[1].corner_a || cuts[0].corner_b == cuts[1].corner_b;
+        if (crossed.size() == 2) {
+          share_corner = crossed[0].corner_a == crossed[1].corner_a ||
+                         crossed[0].corner_a == crossed[1].corner_b ||
+                         crossed[0].corner_b == crossed[1].corner_a ||
+                         crossed[0].corner_b == crossed[1].corner_b;
         }
-        table_case = ProgressiveCase(static_cast<int>(cuts.size()), face_hits, temporary_faces,
+        table_case = ProgressiveCase(static_cast<int>(crossed.size()), face_hits, temporary_faces,
                                      tip_weights.minCoeff() > 0, share_corner);
         ++last_pose_.tets_by_case[table_case];
       }
       const bool tip_inside = inside && tip_weights.minCoeff() >= kTipMargin;
+      if (used.empty() && all_pinned) {
+        // Nothing can open (no cut, or all at snapped corners): the tet stays, whole again if
+        // it stood in pieces.
+        Plan stays{.tet = t, .temporary = inside, .table_case = table_case};
+        if (!open_.at(t).pieces.empty()) stays.split.tets = {corners};
+        plans.push_back(std::move(stays));
+        continue;
+      }
       using Apex = SplitInputs::Apex;
       SplitInputs inputs{cuts, used, tip_inside && !cuts.empty() ? Apex::kTip : Apex::kNone};
       if (const OpenTet& open = open_.at(t);
@@ -1046,13 +1172,20 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
                             temporary_point(InsidePlace(t), corners, tip_weights), rest);
       } else if (used.size() == 2) {
         split = SplitCrackedTet(corners, cuts, {used[0], used[1]}, rest);
-      } else if (used.empty() && !cuts.empty()) {
-        split = SplitCompletelyCutTet(corners, cuts);
       } else if (used.empty()) {
-        // Nothing can open: the tet stays.
-        plans.push_back({.tet = t, .temporary = inside, .table_case = table_case});
-        continue;
+        split = SplitCompletelyCutTet(corners, cuts);
       }
+      // Pieces collapsed at a cut pinned at a snapped corner are left out; a flat one fails.
+      const double volume = std::abs(SignedVolume(*mesh_, corners));
+      const auto without_collapsed = [&](TetSplit* made) {
+        LeaveOutCollapsedTets(made);
+        if (std::any_of(made->tets.begin(), made->tets.end(), [&](const mesh::TetVertices& p) {
+              return std::abs(SignedVolume(*mesh_, p)) <= 1e-12 * volume;
+            })) {
+          *made = {};
+        }
+      };
+      without_collapsed(&split);
       if (split.tets.empty() && !used.empty()) {
         // A pattern the minimal cases do not cover (two cracks, say): a cone from the middle
         // of its face points, which lies inside the tet.
@@ -1060,6 +1193,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         if (middle.minCoeff() >= kTipMargin) {
           split = SplitAsStar(corners, cuts, used,
                               temporary_point(InsidePlace(t), corners, middle, false), rest);
+          without_collapsed(&split);
           inputs.apex = Apex::kMiddle;
         }
       }
@@ -1069,14 +1203,17 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         split = SplitAsStar(
             corners, cuts, used,
             temporary_point(InsidePlace(t), corners, Eigen::Vector4d::Constant(0.25), false), rest);
+        without_collapsed(&split);
         inputs.apex = Apex::kMiddle;
       }
       if (split.tets.empty()) {
         if (inside) {
           ++statistics_.uncovered_temporary_plans;
+          failed.push_back(t);
           failed_temporary = true;
         } else {
           failed_final.push_back(t);
+          failed.push_back(t);
         }
         continue;
       }
@@ -1094,6 +1231,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     if (!failed_temporary && failed_final.empty() && tets_change) {
       for (const std::size_t k : NonConformingPlans(plans)) {
         ++statistics_.nonconforming_plans;
+        failed.push_back(plans[k].tet);
         if (plans[k].temporary) {
           failed_temporary = true;
         } else {
@@ -1108,6 +1246,18 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     if (failed_temporary || !failed_final.empty()) {
       take_back_unused();  // nothing was applied: the mesh is as it was
       put_back_moved();
+      // A snapped vertex no tet has split through for good is taken off the crack where a tet
+      // at it cannot be split (as deferred cutting does), and the pose is tried again.
+      std::vector<VertexId> unsnapping;
+      for (const TetId t : failed) {
+        for (const VertexId v : mesh_->tet_even_if_removed(t)) {
+          if (snapped_.contains(v) && !committed_.contains(v)) unsnapping.push_back(v);
+        }
+      }
+      std::sort(unsnapping.begin(), unsnapping.end());
+      unsnapping.erase(std::unique(unsnapping.begin(), unsnapping.end()), unsnapping.end());
+      for (const VertexId v : unsnapping) Unsnap(v);
+      if (!unsnapping.empty()) continue;
       if (failed_final.empty()) {
         ++statistics_.held_poses;
         last_pose_.held = true;
@@ -1134,6 +1284,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
             source_tet_[*added] = SourceTet(t);
             piece = *added;
           }
+          Commit(corners, open.inputs.cuts);
           ++statistics_.frozen_tets;
         } else {
           // Never subdivided: its hits were never used; drop them.
@@ -1236,9 +1387,12 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
             ++it;
           }
         }
-        ++statistics_.cut_tets;
-        statistics_.new_tets += plan.split.tets.size();
-        ++statistics_.tets_by_case[static_cast<int>(plan.split.cut_case)];
+        if (plan.split.cut_case != CutCase::kNone) {  // not whole again (see `stays`)
+          ++statistics_.cut_tets;
+          statistics_.new_tets += plan.split.tets.size();
+          ++statistics_.tets_by_case[static_cast<int>(plan.split.cut_case)];
+        }
+        Commit(corners, plan.inputs.cuts);
         open.pieces.clear();
         closed.push_back(corners);
         CloseOpenTet(plan.tet);
@@ -1253,6 +1407,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     for (const mesh::TetVertices& corners : closed) ForgetHitsOf(corners);
     break;
   }
+  if (!last_pose_.held) PartFinishedSnappedVertices();
   for (int k = 0; k <= kProgressiveCases; ++k) {
     statistics_.poses_by_case[k] += last_pose_.tets_by_case[k];
   }
@@ -1335,11 +1490,15 @@ void Cutter::CloseOpenTet(TetId t) {
   if (it == open_.end()) return;
   // Its faces with points are split for good.
   const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
+  // (A cut pinned at a snapped corner, or along the crack, leaves a face whole on its own.)
+  const auto splits = [&](VertexId a, VertexId b) {
+    const auto hit = edge_hits_.find(MakeEdgeKey(a, b));
+    return hit != edge_hits_.end() && !hit->second.along && hit->second.at == kNoVertex;
+  };
   for (const auto& f : mesh::kTetFaces) {
     const FaceKey key = MakeFaceKey(corners, f);
-    if (face_hits_.contains(key) || edge_hits_.contains(MakeEdgeKey(key[0], key[1])) ||
-        edge_hits_.contains(MakeEdgeKey(key[1], key[2])) ||
-        edge_hits_.contains(MakeEdgeKey(key[0], key[2]))) {
+    if (face_hits_.contains(key) || splits(key[0], key[1]) || splits(key[1], key[2]) ||
+        splits(key[0], key[2])) {
       settled_faces_.insert(key);
     }
   }
@@ -1355,7 +1514,15 @@ void Cutter::ForgetHitsOf(const mesh::TetVertices& corners) {
     });
   };
   for (const auto& [i, j] : mesh::kTetEdges) {
-    if (!open_has({corners[i], corners[j]})) edge_hits_.erase(MakeEdgeKey(corners[i], corners[j]));
+    const auto hit = edge_hits_.find(MakeEdgeKey(corners[i], corners[j]));
+    if (hit == edge_hits_.end() || open_has({corners[i], corners[j]})) continue;
+    // A hit at a snapped vertex, or along the crack, stays until the vertex parts: a tet
+    // opened again before then must split with it, as its neighbours did.
+    const bool at_snapped =
+        hit->second.at != kNoVertex
+            ? snapped_.contains(hit->second.at)
+            : hit->second.along && (snapped_.contains(corners[i]) || snapped_.contains(corners[j]));
+    if (!at_snapped) edge_hits_.erase(hit);
   }
   for (const auto& f : mesh::kTetFaces) {
     if (!open_has({corners[f[0]], corners[f[1]], corners[f[2]]})) {

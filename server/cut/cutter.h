@@ -71,13 +71,19 @@ enum class CutMode { kProgressive, kDeferred };
 // solve, while the opening still follows the blade (README: what it costs and buys).
 inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 
-// Snapping (the paper's proposal against slivers; deferred cutting): an edge crossed within
-// this fraction of its length from a vertex is taken as crossed at the vertex, which then lies
-// on the crack, and every edge from it to the side it is not on is cut at it: pinned, the cut's
-// one point the corner itself, so cuts through vertices and along edges are the minimal cases
-// with some cut points at corners (their collapsed pieces left out). When its tets have split
-// (together, in one group), the vertex is parted: the part of its tets on its own side keeps
-// it, each other part across the crack gets a copy. A vertex snaps once. 0: no snapping.
+// Snapping (the paper's proposal against slivers): an edge crossed within this fraction of its
+// length from a vertex is taken as crossed at the vertex, which then lies on the crack, and
+// every edge from it to the side it is not on is cut at it: pinned, the cut's one point the
+// corner itself, so cuts through vertices and along edges are the minimal cases with some cut
+// points at corners (their collapsed pieces left out). When its tets have split (deferred:
+// together, in one group; progressive: each once the blade has left it, the vertex's last
+// one ending its wait), the vertex is parted: the part of its tets on its own side keeps it,
+// each other part across the crack gets a copy; a neighbour on the crack parted before parts
+// again if that separates its tets. A vertex snaps once. Where a tet at it cannot be split
+// with it, it is taken off the crack (unsnapped), unless (progressive) a tet has split through
+// it for good: it is then committed, and a crossing on its own side is cut as found. While it
+// waits, the crack does not open at it: progressive cutting lags the blade by up to a tet
+// there. 0: no snapping.
 inline constexpr double kDefaultSnapFraction = 0;
 
 // The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
@@ -129,8 +135,7 @@ class Cutter {
   // The mesh must outlive the cutter and change only through it while it cuts. `cell_size`
   // (m) sets the grid; a mean edge length is a good choice. INVALID_ARGUMENT for a bad size.
   // `min_temporary_height`: see kDefaultMinTemporaryHeight (0: no piece is soft).
-  // `snap_fraction`: see kDefaultSnapFraction; in [0, 0.5), and 0 unless deferred (progressive
-  // cutting does not snap yet).
+  // `snap_fraction`: see kDefaultSnapFraction; in [0, 0.5).
   static absl::StatusOr<Cutter> Create(mesh::TetMesh* mesh, double cell_size,
                                        const BladeLimits& limits = {},
                                        CutMode mode = CutMode::kProgressive,
@@ -302,12 +307,27 @@ class Cutter {
   // cut at one of them.
   void MarkEdgeBetweenSnapped(EdgeKey key, mesh::VertexId a, mesh::VertexId b);
   // Takes `v` off the crack: its hits are as they were found (those through it skipped), and
-  // it does not snap again.
+  // it does not snap again. Not once committed.
   void Unsnap(mesh::VertexId v);
-  // After the tets at them split: each snapped vertex among `corners` is parted, its tets
-  // joined through faces at it forming parts (the crack separates them; one part if the crack
-  // ends there). The part on its own side keeps it, each other part gets a copy.
-  void PartSnappedVertices(const std::vector<mesh::TetVertices>& corners);
+  // Progressive: the snapped corners that `cuts` (of the tet `corners`, split for good) are
+  // pinned at are committed: they stay on the crack.
+  void Commit(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts);
+  // After the tets at them split: each of the snapped `vertices` is parted, its tets joined
+  // through faces at it forming parts (the crack separates them; one part if the crack ends
+  // there). The part on its own side keeps it, each other part gets a copy.
+  // A vertex on the crack parted before may part again once a neighbour's parting separates
+  // its star.
+  void PartSnappedVertices(std::vector<mesh::VertexId> vertices);
+  // Parts the star of `v` (snapped and parted, or a copy): returns the copies made, with v
+  // itself if any was (their stars changed); none if the crack does not separate it.
+  std::vector<mesh::VertexId> PartStar(mesh::VertexId v);
+  // Progressive: parts the snapped vertices no open tet has (every tet at them is final), and
+  // forgets their hits.
+  void PartFinishedSnappedVertices();
+  // The tets (as OwnerOf) with `v` among their corners.
+  std::vector<mesh::TetId> OwnersAt(mesh::VertexId v) const;
+  // Whether the edge has a hit that cuts it (not one along the crack).
+  bool IsCutEdge(mesh::VertexId a, mesh::VertexId b) const;
   // Joins the groups of tets that share a new hit (each made a group if it was not in one).
   void Join(std::span<const mesh::TetId> tets);
   mesh::TetId GroupOf(mesh::TetId t);
@@ -347,6 +367,9 @@ class Cutter {
   };
   absl::flat_hash_map<mesh::VertexId, SnappedVertex> snapped_;
   absl::flat_hash_set<mesh::VertexId> was_snapped_;
+  absl::flat_hash_set<mesh::VertexId> committed_;  // see Commit
+  // Snapped vertices parted (copies made or not), with the side each gave up.
+  absl::flat_hash_map<mesh::VertexId, Eigen::Vector3d> parted_;
   absl::flat_hash_map<mesh::VertexId, mesh::VertexId> parted_from_;  // copy -> vertex
   std::optional<BladePose> previous_;
   // The current positions, when the previous pose was applied, of the vertices then near the

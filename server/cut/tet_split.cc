@@ -101,11 +101,16 @@ std::array<Triangle, 2> QuadTriangles(const std::array<VertexId, 4>& q,
 }
 
 // The tets joining `apex` to each boundary triangle of a region that does not contain it:
-// a valid split exactly when the region is star-shaped from the apex.
+// a valid split exactly when the region is star-shaped from the apex. A triangle with a
+// repeated vertex (collapsed at a cut point that is a corner: a snapped crossing) has no area
+// and gets no tet.
 std::vector<mesh::TetVertices> Cone(VertexId apex, const std::vector<Triangle>& boundary) {
   std::vector<mesh::TetVertices> tets;
   for (const Triangle& t : boundary) {
-    if (std::find(t.begin(), t.end(), apex) == t.end()) tets.push_back({apex, t[0], t[1], t[2]});
+    const bool collapsed = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    if (!collapsed && std::find(t.begin(), t.end(), apex) == t.end()) {
+      tets.push_back({apex, t[0], t[1], t[2]});
+    }
   }
   return tets;
 }

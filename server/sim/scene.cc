@@ -192,11 +192,6 @@ absl::StatusOr<Scene> Build(const kerf::v1::Scene& spec, absl::string_view base_
       return absl::InvalidArgumentError(
           absl::StrCat("cutting.snap_fraction must be in [0, 0.5), got ", scene.snap_fraction));
     }
-    if (scene.snap_fraction > 0 && scene.cut_mode != kerf::v1::Cutting::DEFERRED) {
-      return absl::InvalidArgumentError(
-          "cutting.snap_fraction needs cutting.mode DEFERRED (progressive cutting does not snap "
-          "yet)");
-    }
   }
   if (!kerf::v1::Elasticity::Model_IsValid(spec.elasticity().model())) {
     return absl::InvalidArgumentError(absl::StrCat(

@@ -338,15 +338,16 @@ TEST(KerfCli, StabilityExperimentCutsThePoorLatticeByEveryMethod) {
   kerf::v1::StabilityExperiment experiment;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
   EXPECT_TRUE(experiment.snapping());
-  // paths x cuttings (progressive, deferred, deferred with snapping) x integrators x laws
-  ASSERT_EQ(experiment.rows_size(), 2 * 3 * 3 * 2);
-  int defaults = 0, snapped = 0;
+  // paths x cuttings (progressive, deferred, each with and without snapping) x integrators x
+  // laws
+  ASSERT_EQ(experiment.rows_size(), 2 * 4 * 3 * 2);
+  int defaults = 0, snapped = 0, progressive_snapped = 0;
   for (const kerf::v1::LiveCutRow& r : experiment.rows()) {
     SCOPED_TRACE(absl::StrCat(r.path(), ", ", r.cut_mode(), " ", r.snap_fraction(), ", ",
                               r.integration(), ", ", r.law()));
     if (r.snap_fraction() > 0) {
       ++snapped;
-      EXPECT_EQ(r.cut_mode(), "deferred");
+      progressive_snapped += r.cut_mode() == "progressive";
       EXPECT_EQ(r.snap_fraction(), 0.2);
     }
     EXPECT_EQ(r.scene(), "lattice-poor");
@@ -355,14 +356,15 @@ TEST(KerfCli, StabilityExperimentCutsThePoorLatticeByEveryMethod) {
     EXPECT_LT(r.smallest_radius_ratio(), 0.05);
     EXPECT_GT(r.critical_time_step(), 0);
     if (r.integration() == "IMPLICIT_EULER, 1 ms" && r.law() == "linear" &&
-        r.cut_mode() == "progressive") {
+        r.cut_mode() == "progressive" && r.snap_fraction() == 0) {
       ++defaults;
       EXPECT_FALSE(r.blew_up());
       EXPECT_GT(r.cut_tets(), 0u);
     }
   }
   EXPECT_EQ(defaults, 2);
-  EXPECT_EQ(snapped, 2 * 3 * 2);
+  EXPECT_EQ(snapped, 2 * 2 * 3 * 2);
+  EXPECT_EQ(progressive_snapped, 2 * 3 * 2);
 }
 
 TEST(KerfCli, StabilityRefusesBadInputByName) {
@@ -472,7 +474,7 @@ TEST(KerfCli, CutReportsHeldPosesAndSoftenedPieces) {
 
 // Snapping: along the straight path the blade passes within 0.2 of an edge of a plane of
 // vertices; deferred with --snap 0.2 it cuts through them, and every cut tet goes over whole
-// (no sliver, the lattice's own 45 degrees); progressive cutting refuses to snap.
+// (no sliver, the lattice's own 45 degrees); progressive cutting ends with the same mesh.
 TEST(KerfCli, CutSnapsThroughVerticesWhenAsked) {
   const auto cut = [](absl::string_view extra) {
     kerf::v1::CutReport report;
@@ -495,13 +497,22 @@ TEST(KerfCli, CutSnapsThroughVerticesWhenAsked) {
   EXPECT_NEAR(snapped.min_dihedral_deg(), 45, 1e-9);
   EXPECT_EQ(snapped.components(), plain.components());
   EXPECT_TRUE(snapped.valid());
-  const CliResult progressive = Kerf(absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR,
-                                                  "/server/cut/paths/lattice-straight.json --out ",
-                                                  ::testing::TempDir(), "/snap.vtu --snap 0.2"));
-  EXPECT_EQ(progressive.exit_code, 1);
-  EXPECT_NE(progressive.output.find("snapping is made for deferred cutting only"),
-            std::string::npos)
-      << progressive.output;
+  // Progressive cutting snaps alike: the same mesh at the end, each vertex parted once its
+  // tets are final.
+  const kerf::v1::CutReport progressive = cut(" --snap 0.2");
+  EXPECT_EQ(progressive.snapped_vertices(), snapped.snapped_vertices());
+  EXPECT_EQ(progressive.parted_vertices(), snapped.parted_vertices());
+  EXPECT_EQ(progressive.tets_after(), snapped.tets_after());
+  EXPECT_EQ(progressive.slivers(), 0u);
+  EXPECT_EQ(progressive.components(), plain.components());
+  EXPECT_EQ(progressive.held_poses(), 0u);
+  EXPECT_TRUE(progressive.valid());
+  const CliResult bad = Kerf(absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR,
+                                          "/server/cut/paths/lattice-straight.json --out ",
+                                          ::testing::TempDir(), "/snap.vtu --snap 0.5"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("the snap fraction must be in [0, 0.5), got 0.5"), std::string::npos)
+      << bad.output;
 }
 
 TEST(KerfCli, CutRefusesABadPathNamingThePose) {

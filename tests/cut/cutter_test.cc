@@ -174,18 +174,19 @@ TEST(Cutter, DegenerateBladesLeaveAValidMesh) {
   }
 }
 
-// The bar cut deferred with `snap_fraction` by a blade from (x, -5 mm, z_tip) to
+// The bar cut in `mode` with `snap_fraction` by a blade from (x, -5 mm, z_tip) to
 // (x, -5 mm, z_heel) swept 30 mm along y; valid and of the same volume after every pose and at
 // the end.
 struct SnappedBar {
   TetMesh mesh;
   CutStatistics statistics;
 };
-SnappedBar CutBarAlongY(double snap_fraction, double x, double z_tip, double z_heel) {
+SnappedBar CutBarAlongY(double snap_fraction, double x, double z_tip, double z_heel,
+                        CutMode mode = CutMode::kDeferred) {
   SnappedBar bar{Bar(), {}};
   const double volume = RestVolume(bar.mesh);
-  Cutter cutter = *Cutter::Create(&bar.mesh, 0.01, {}, CutMode::kDeferred,
-                                  kDefaultMinTemporaryHeight, snap_fraction);
+  Cutter cutter =
+      *Cutter::Create(&bar.mesh, 0.01, {}, mode, kDefaultMinTemporaryHeight, snap_fraction);
   double time = 0;
   Sweep(cutter, bar.mesh, {x, -0.005, z_tip}, {x, -0.005, z_heel}, {0, 0.03, 0}, &time);
   cutter.Finish();
@@ -195,7 +196,7 @@ SnappedBar CutBarAlongY(double snap_fraction, double x, double z_tip, double z_h
   return bar;
 }
 
-// Snapping (deferred): a blade 1.2 mm (0.12 of an edge) past the plane of vertices x = 30 mm
+// Snapping (either mode): a blade 1.2 mm (0.12 of an edge) past the plane of vertices x = 30 mm
 // cuts through those vertices instead: each cut tet becomes one tet with copies on the far
 // side, so no new shape (and no sliver) appears; without snapping the same blade makes slivers.
 TEST(Snapping, ACutNearAPlaneOfVerticesGoesThroughThemAndMakesNoNewShape) {
@@ -211,10 +212,12 @@ TEST(Snapping, ACutNearAPlaneOfVerticesGoesThroughThemAndMakesNoNewShape) {
     return smallest;
   };
   const TetMesh uncut = Bar();
-  for (const double snap : {0.0, 0.2}) {
-    SCOPED_TRACE(snap);
+  for (const auto& [snap, mode] :
+       {std::pair{0.0, CutMode::kDeferred}, std::pair{0.2, CutMode::kDeferred},
+        std::pair{0.0, CutMode::kProgressive}, std::pair{0.2, CutMode::kProgressive}}) {
+    SCOPED_TRACE(absl::StrCat(snap, mode == CutMode::kDeferred ? " deferred" : " progressive"));
     const std::uint32_t original_vertices = uncut.vertex_index_bound();
-    const SnappedBar bar = CutBarAlongY(snap, 0.0312, -0.005, 0.025);
+    const SnappedBar bar = CutBarAlongY(snap, 0.0312, -0.005, 0.025, mode);
     const TetMesh& m = bar.mesh;
     EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);  // cut through either way
     const CutStatistics& s = bar.statistics;
@@ -495,12 +498,13 @@ TEST_P(RandomPaths, ThroughTheLiverKeepEveryPropertyAfterEveryPose) {
   ExpectSnapping(totals);
 }
 
-INSTANTIATE_TEST_SUITE_P(BothModes, RandomPaths,
-                         ::testing::Values(RandomCutting{CutMode::kProgressive, 0, "Progressive"},
-                                           RandomCutting{CutMode::kDeferred, 0, "Deferred"},
-                                           RandomCutting{CutMode::kDeferred, 0.2,
-                                                         "DeferredSnapped"}),
-                         [](const auto& cutting) { return cutting.param.name; });
+INSTANTIATE_TEST_SUITE_P(
+    BothModes, RandomPaths,
+    ::testing::Values(RandomCutting{CutMode::kProgressive, 0, "Progressive"},
+                      RandomCutting{CutMode::kProgressive, 0.2, "ProgressiveSnapped"},
+                      RandomCutting{CutMode::kDeferred, 0, "Deferred"},
+                      RandomCutting{CutMode::kDeferred, 0.2, "DeferredSnapped"}),
+    [](const auto& cutting) { return cutting.param.name; });
 
 }  // namespace
 }  // namespace kerf::cut

@@ -84,9 +84,8 @@ TEST(BuildScene, InvalidValuesNameTheSceneAndTheField) {
        "scene 'lattice-tension': cutting.min_temporary_height must be a fraction in [0, 1), got 1"},
       {Tension() + "cutting { mode: DEFERRED snap_fraction: 0.5 }\n",
        "scene 'lattice-tension': cutting.snap_fraction must be in [0, 0.5), got 0.5"},
-      {Tension() + "cutting { snap_fraction: 0.2 }\n",
-       "scene 'lattice-tension': cutting.snap_fraction needs cutting.mode DEFERRED (progressive "
-       "cutting does not snap yet)"},
+      {Tension() + "cutting { snap_fraction: -0.1 }\n",
+       "scene 'lattice-tension': cutting.snap_fraction must be in [0, 0.5), got -0.1"},
       {Tension() + "elasticity { model: 9 }\n",
        "scene 'lattice-tension': elasticity.model must be LINEAR, COROTATIONAL or AUTO, got 9"},
       {Tension() + "elasticity { model: AUTO auto_strain: 0 }\n",
