@@ -575,7 +575,9 @@ void Cutter::PartSnappedVertices(std::vector<VertexId> vertices) {
     for (const VertexId x : copies) {
       for (const TetId t : mesh_->TetsAround(x)) {
         for (const VertexId w : mesh_->tet(t)) {
-          if (!snapped_.contains(w) && parted_.contains(PartedFrom(w))) neighbours.push_back(w);
+          if (!snapped_.contains(w) && parted_.contains(PartedFrom(w)) && !Waiting(w)) {
+            neighbours.push_back(w);
+          }
         }
       }
     }
@@ -656,18 +658,17 @@ std::vector<VertexId> Cutter::PartStar(VertexId v) {
   return copies;
 }
 
+bool Cutter::Waiting(VertexId v) const {
+  const std::span<const TetId> around = mesh_->TetsAround(v);
+  return std::any_of(around.begin(), around.end(), [&](TetId t) {
+    return group_of_.contains(t) || open_.contains(t) || owner_.contains(t);
+  });
+}
+
 void Cutter::PartFinishedSnappedVertices() {
-  // Those no open tet has as a corner or in its pieces: every tet at them is final.
-  absl::flat_hash_set<VertexId> waiting;
-  for (const auto& [t, open] : open_) {
-    for (const VertexId v : mesh_->tet_even_if_removed(t)) waiting.insert(v);
-    for (const TetId piece : open.pieces) {
-      for (const VertexId v : mesh_->tet(piece)) waiting.insert(v);
-    }
-  }
-  std::vector<VertexId> finished;
+  std::vector<VertexId> finished;  // every tet at them is final
   for (const auto& [v, snapped] : snapped_) {
-    if (!waiting.contains(v)) finished.push_back(v);
+    if (!Waiting(v)) finished.push_back(v);
   }
   if (finished.empty()) return;
   PartSnappedVertices(finished);

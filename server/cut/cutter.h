@@ -324,6 +324,9 @@ class Cutter {
   // Progressive: parts the snapped vertices no open tet has (every tet at them is final), and
   // forgets their hits.
   void PartFinishedSnappedVertices();
+  // Whether a tet at `v` waits to split: in a group (deferred), open or a temporary piece
+  // (progressive). O(tets at v).
+  bool Waiting(mesh::VertexId v) const;
   // The tets (as OwnerOf) with `v` among their corners.
   std::vector<mesh::TetId> OwnersAt(mesh::VertexId v) const;
   // Whether the edge has a hit that cuts it (not one along the crack).
