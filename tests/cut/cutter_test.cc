@@ -294,6 +294,33 @@ TEST(Snapping, AVertexThatCannotBeSplitWithTheCrackIsUnsnapped) {
   }
 }
 
+// Cut progressively, the same crack front (ending inside the bar at snapped vertices) splits
+// with them: the tets the blade has left are final while the front's tets still hold it, so the
+// crack ends at those vertices (they stay one part) instead of unsnapping them. The crack is as
+// deep, nothing is dropped, and half the tets are cut.
+TEST(Snapping, ACrackFrontCutProgressivelyEndsAtSnappedVertices) {
+  const double area = BoundaryArea(Bar());
+  const SnappedBar plain = CutBarAlongY(0, 0.0312, 0.0107, 0.03, CutMode::kProgressive);
+  const SnappedBar snapped = CutBarAlongY(0.2, 0.0312, 0.0107, 0.03, CutMode::kProgressive);
+  for (const SnappedBar* bar : {&plain, &snapped}) {
+    EXPECT_EQ(mesh::FindConnectedComponents(bar->mesh).count, 1u);
+    EXPECT_EQ(bar->statistics.dropped_hits, 0u);
+    EXPECT_NEAR(BoundaryArea(bar->mesh) - area, 2 * 0.02 * 0.0093, 0.15 * 2 * 0.02 * 0.0093);
+  }
+  const CutStatistics& s = snapped.statistics;
+  std::printf(
+      "crack near vertices, progressive: %zu cut, %zu new (unsnapped: %zu, %zu); %zu "
+      "snapped, %zu parted\n",
+      s.cut_tets, s.new_tets, plain.statistics.cut_tets, plain.statistics.new_tets,
+      s.snapped_vertices, s.parted_vertices);
+  EXPECT_EQ(s.snapped_vertices, 6u);
+  EXPECT_EQ(s.unsnapped_vertices, 0u);
+  EXPECT_GT(s.parted_vertices, 0u);
+  EXPECT_LT(s.parted_vertices, s.snapped_vertices);  // where the crack ends, no copy
+  EXPECT_LT(s.cut_tets, plain.statistics.cut_tets);
+  EXPECT_EQ(s.held_poses, 0u);
+}
+
 TEST(Cutter, ABadPoseIsRefusedAndChangesNothing) {
   TetMesh m = Bar();
   Cutter cutter = *Cutter::Create(&m, 0.01, {}, CutMode::kDeferred);
