@@ -101,6 +101,24 @@ bool IsPinned(const mesh::TetVertices& corners, const EdgeCut& cut) {
          (cut.near_a == corners[cut.corner_a] || cut.near_a == corners[cut.corner_b]);
 }
 
+// Leaves out the pieces collapsed at cuts pinned at a snapped corner (LeaveOutCollapsedTets),
+// and empties the split if the rest does not tile the tet at rest: a flat piece, or volumes that
+// do not add up to the tet's (a snapped pattern the case's pieces do not fit).
+void KeepIfItTiles(const mesh::TetMesh& mesh, const mesh::TetVertices& corners, TetSplit* split) {
+  LeaveOutCollapsedTets(split);
+  const double volume = std::abs(SignedVolume(mesh, corners));
+  double total = 0;
+  for (const mesh::TetVertices& piece : split->tets) {
+    const double v = std::abs(SignedVolume(mesh, piece));
+    if (v <= 1e-12 * volume) {
+      *split = {};
+      return;
+    }
+    total += v;
+  }
+  if (std::abs(total - volume) > 1e-10 * volume) *split = {};
+}
+
 // Whether `other` lies beyond the plane through `v` across `far` (by more than `tolerance`
 // of the edge between them): on the side a snapped v does not keep.
 bool Beyond(const mesh::TetMesh& mesh, VertexId v, VertexId other, const Eigen::Vector3d& far,
@@ -247,9 +265,9 @@ std::vector<TetId> Cutter::OwnersAt(VertexId v) const {
   return owners;
 }
 
-bool Cutter::IsCutEdge(VertexId a, VertexId b) const {
+bool Cutter::IsCutEdge(VertexId a, VertexId b, bool pinned) const {
   const auto it = edge_hits_.find(MakeEdgeKey(a, b));
-  return it != edge_hits_.end() && !it->second.along;
+  return it != edge_hits_.end() && !it->second.along && (pinned || it->second.at == kNoVertex);
 }
 
 absl::Status Cutter::RememberPositionsNear(const BladePose& pose) {
@@ -887,13 +905,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       TetSplit split;
       if (faces.empty()) split = SplitCompletelyCutTet(corners, cuts);
       if (faces.size() == 2) split = SplitCrackedTet(corners, cuts, {faces[0], faces[1]}, rest);
-      LeaveOutCollapsedTets(&split);
-      const double volume = std::abs(SignedVolume(*mesh_, corners));
-      if (std::any_of(split.tets.begin(), split.tets.end(), [&](const mesh::TetVertices& piece) {
-            return std::abs(SignedVolume(*mesh_, piece)) <= 1e-12 * volume;
-          })) {
-        split = {};  // a snapped point made a flat piece: no split of this tet
-      }
+      KeepIfItTiles(*mesh_, corners, &split);
       if (split.tets.empty()) {
         failed.push_back(t);
       } else {
@@ -1082,7 +1094,10 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       inside = inside || std::any_of(cuts.begin(), cuts.end(), [&](const EdgeCut& c) {
                  return c.near_a == c.near_b && !pinned(c);
                });
-      // Face points that can open: on a face with a cut edge (a permanent one first).
+      // Face points that can open: on a face with a cut edge (a permanent one first). A
+      // temporary one needs an edge that opens: where the face's only cuts are pinned at a
+      // snapped corner, the crack passes through the corner and the blade beside it opens
+      // nothing until the corner parts.
       std::vector<FacePoint> used;
       Eigen::Vector4d used_sum = Eigen::Vector4d::Zero();  // their corner weights, summed
       int face_hits = 0, temporary_faces = 0;
@@ -1096,10 +1111,13 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           ++temporary_faces;
           if (c->barycentric.minCoeff() >= kDegenerate) crossing = c->barycentric;
         }
-        const bool cut_edge =
-            IsCutEdge(key[0], key[1]) || IsCutEdge(key[1], key[2]) || IsCutEdge(key[0], key[2]);
-        if (!cut_edge) continue;
+        const auto cut_edge = [&](bool counting_pinned) {
+          return IsCutEdge(key[0], key[1], counting_pinned) ||
+                 IsCutEdge(key[1], key[2], counting_pinned) ||
+                 IsCutEdge(key[0], key[2], counting_pinned);
+        };
         Eigen::Vector3d barycentric;
+        if (!cut_edge(true)) continue;
         if (hit != face_hits_.end()) {
           if (hit->second.vertex == kNoVertex) {
             const Eigen::Vector3d& b = hit->second.barycentric;
@@ -1109,7 +1127,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           }
           used.push_back({k, hit->second.vertex});
           barycentric = hit->second.barycentric;
-        } else if (crossing && !settled_faces_.contains(key)) {
+        } else if (crossing && !settled_faces_.contains(key) && cut_edge(false)) {
           const Eigen::Vector3d& b = *crossing;
           used.push_back(
               {k, temporary_point(key, {key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0})});
@@ -1176,16 +1194,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       } else if (used.empty()) {
         split = SplitCompletelyCutTet(corners, cuts);
       }
-      // Pieces collapsed at a cut pinned at a snapped corner are left out; a flat one fails.
-      const double volume = std::abs(SignedVolume(*mesh_, corners));
-      const auto without_collapsed = [&](TetSplit* made) {
-        LeaveOutCollapsedTets(made);
-        if (std::any_of(made->tets.begin(), made->tets.end(), [&](const mesh::TetVertices& p) {
-              return std::abs(SignedVolume(*mesh_, p)) <= 1e-12 * volume;
-            })) {
-          *made = {};
-        }
-      };
+      const auto without_collapsed = [&](TetSplit* made) { KeepIfItTiles(*mesh_, corners, made); };
       without_collapsed(&split);
       if (split.tets.empty() && !used.empty()) {
         // A pattern the minimal cases do not cover (two cracks, say): a cone from the middle
@@ -1523,12 +1532,21 @@ void Cutter::ForgetHitsOf(const mesh::TetVertices& corners) {
         hit->second.at != kNoVertex
             ? snapped_.contains(hit->second.at)
             : hit->second.along && (snapped_.contains(corners[i]) || snapped_.contains(corners[j]));
-    if (!at_snapped) edge_hits_.erase(hit);
+    if (at_snapped) continue;
+    // A copy of its point no tet took (the pieces on a side collapsed at a snapped corner).
+    for (const VertexId made : {hit->second.near_low, hit->second.near_high}) {
+      if (made != kNoVertex && mesh_->TetsAround(made).empty()) (void)mesh_->RemoveVertex(made);
+    }
+    edge_hits_.erase(hit);
   }
   for (const auto& f : mesh::kTetFaces) {
-    if (!open_has({corners[f[0]], corners[f[1]], corners[f[2]]})) {
-      face_hits_.erase(MakeFaceKey(corners, f));
+    const auto hit = face_hits_.find(MakeFaceKey(corners, f));
+    if (hit == face_hits_.end() || open_has({corners[f[0]], corners[f[1]], corners[f[2]]})) {
+      continue;
     }
+    const VertexId made = hit->second.vertex;
+    if (made != kNoVertex && mesh_->TetsAround(made).empty()) (void)mesh_->RemoveVertex(made);
+    face_hits_.erase(hit);
   }
 }
 

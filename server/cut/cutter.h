@@ -286,7 +286,8 @@ class Cutter {
   void MakePermanent(const std::function<bool(const FaceKey&, mesh::VertexId)>& which);
   // Ends an open tet's life as such, keeping what stands for it now.
   void CloseOpenTet(mesh::TetId t);
-  // Forgets the hits of `corners` that no open tet has any more.
+  // Forgets the hits of `corners` that no open tet has any more (removing the vertices made for
+  // them that no tet took).
   void ForgetHitsOf(const mesh::TetVertices& corners);
   // An edge crossing found this pose: fraction from the lower-id vertex.
   struct Crossing {
@@ -329,8 +330,9 @@ class Cutter {
   bool Waiting(mesh::VertexId v) const;
   // The tets (as OwnerOf) with `v` among their corners.
   std::vector<mesh::TetId> OwnersAt(mesh::VertexId v) const;
-  // Whether the edge has a hit that cuts it (not one along the crack).
-  bool IsCutEdge(mesh::VertexId a, mesh::VertexId b) const;
+  // Whether the edge has a hit that cuts it (not one along the crack), counting one pinned at a
+  // snapped corner if `pinned`.
+  bool IsCutEdge(mesh::VertexId a, mesh::VertexId b, bool pinned) const;
   // Joins the groups of tets that share a new hit (each made a group if it was not in one).
   void Join(std::span<const mesh::TetId> tets);
   mesh::TetId GroupOf(mesh::TetId t);

@@ -436,6 +436,24 @@ TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut
       const int third = face[0] + face[1] + face[2] - x.corner_a - x.corner_b;
       boundary.push_back({corners[x.corner_a], x.near_a, corners[third]});
       boundary.push_back({x.near_a, corners[x.corner_b], corners[third]});
+    } else if (face_cuts.size() == 3) {
+      // Two cuts pinned at one corner (snapped: the crack passes through it) and the third
+      // edge cut: the crack runs from the corner to that cut, two triangles.
+      std::optional<int> pinned_at;
+      for (const int c : face) {
+        const auto pinned_here = [&](const EdgeCut* x) {
+          return x->near_a == corners[c] && x->near_b == corners[c];
+        };
+        if (std::count_if(face_cuts.begin(), face_cuts.end(), pinned_here) == 2) pinned_at = c;
+      }
+      if (!pinned_at) return TetSplit{};
+      const int c = *pinned_at;
+      const int a = face[0] == c ? face[1] : face[0];
+      const int b = face[0] + face[1] + face[2] - c - a;
+      const EdgeCut* opposite = FindCut(cuts, a, b);
+      if (opposite->near_a == opposite->near_b) return TetSplit{};
+      boundary.push_back({corners[c], corners[a], Near(cuts, a, b)});
+      boundary.push_back({corners[c], Near(cuts, b, a), corners[b]});
     } else {
       return TetSplit{};
     }

@@ -75,7 +75,9 @@ TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<Edg
 // so a neighbour split by any of them conforms. A face with a face point fans from it, leaving
 // a slit to each cut edge of the face; a face with two cut edges and no point is a corner
 // triangle and a quadrilateral split by the key rule; a face with one closed cut is two
-// triangles from its third corner; a face with neither is whole. The crack
+// triangles from its third corner; a face with two cuts pinned at one corner (a snapped
+// crossing: the cut point is the corner) and its third edge cut is two triangles from that
+// corner; a face with none is whole (triangles collapsed at pinned cuts get no tet). The crack
 // then opens from the apex to the faces (its faces are the cone's faces through the slits).
 // An empty result (kNone) when a face has another pattern or a tet would be flat or inverted.
 TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
