@@ -1194,8 +1194,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       } else if (used.empty()) {
         split = SplitCompletelyCutTet(corners, cuts);
       }
-      const auto without_collapsed = [&](TetSplit* made) { KeepIfItTiles(*mesh_, corners, made); };
-      without_collapsed(&split);
+      KeepIfItTiles(*mesh_, corners, &split);
       if (split.tets.empty() && !used.empty()) {
         // A pattern the minimal cases do not cover (two cracks, say): a cone from the middle
         // of its face points, which lies inside the tet.
@@ -1203,7 +1202,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         if (middle.minCoeff() >= kTipMargin) {
           split = SplitAsStar(corners, cuts, used,
                               temporary_point(InsidePlace(t), corners, middle, false), rest);
-          without_collapsed(&split);
+          KeepIfItTiles(*mesh_, corners, &split);
           inputs.apex = Apex::kMiddle;
         }
       }
@@ -1213,7 +1212,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         split = SplitAsStar(
             corners, cuts, used,
             temporary_point(InsidePlace(t), corners, Eigen::Vector4d::Constant(0.25), false), rest);
-        without_collapsed(&split);
+        KeepIfItTiles(*mesh_, corners, &split);
         inputs.apex = Apex::kMiddle;
       }
       if (split.tets.empty()) {
