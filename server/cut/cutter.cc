@@ -35,6 +35,12 @@ std::uint64_t MakeEdgeKey(VertexId a, VertexId b) {
   return (std::uint64_t{Index(a)} << 32) | Index(b);
 }
 
+// The two vertices of an edge key, lower id first.
+std::array<VertexId, 2> EdgeEnds(std::uint64_t key) {
+  return {VertexId(static_cast<std::uint32_t>(key >> 32)),
+          VertexId(static_cast<std::uint32_t>(key))};
+}
+
 std::array<VertexId, 3> MakeFaceKey(VertexId a, VertexId b, VertexId c) {
   std::array<VertexId, 3> key = {a, b, c};
   std::sort(key.begin(), key.end());
@@ -375,8 +381,7 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
   }
   RecordEdgeCrossings(crossings, normal, &new_edges);
   for (const EdgeKey key : new_edges) {
-    const std::array<VertexId, 2> ends = {VertexId(static_cast<std::uint32_t>(key >> 32)),
-                                          VertexId(static_cast<std::uint32_t>(key))};
+    const std::array<VertexId, 2> ends = EdgeEnds(key);
     if (mode_ == CutMode::kDeferred) {
       Join(mesh_->TetsAroundEdge(ends[0], ends[1]));
     } else {
@@ -694,8 +699,8 @@ void Cutter::PartFinishedSnappedVertices() {
   const absl::flat_hash_set<VertexId> parted(finished.begin(), finished.end());
   absl::erase_if(edge_hits_, [&](const auto& entry) {
     const auto& [key, hit] = entry;
-    const bool at_parted = parted.contains(VertexId(static_cast<std::uint32_t>(key >> 32))) ||
-                           parted.contains(VertexId(static_cast<std::uint32_t>(key)));
+    const std::array<VertexId, 2> ends = EdgeEnds(key);
+    const bool at_parted = parted.contains(ends[0]) || parted.contains(ends[1]);
     return at_parted && (hit.along || parted.contains(hit.at));
   });
 }
@@ -986,8 +991,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
   // are all pinned is closed as soon as the blade is not in it, and the blade may come back).
   for (const auto& [key, hit] : edge_hits_) {
     if (hit.at == kNoVertex && !hit.along) continue;
-    const std::array<VertexId, 2> ends = {VertexId(static_cast<std::uint32_t>(key >> 32)),
-                                          VertexId(static_cast<std::uint32_t>(key))};
+    const std::array<VertexId, 2> ends = EdgeEnds(key);
     for (const TetId t : TetsWith(ends)) open_.try_emplace(t);
   }
   while (true) {  // again after a tet the blade left is frozen or has its hits dropped
@@ -1500,14 +1504,10 @@ void Cutter::CloseOpenTet(TetId t) {
   // Its faces with points are split for good.
   const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
   // (A cut pinned at a snapped corner, or along the crack, leaves a face whole on its own.)
-  const auto splits = [&](VertexId a, VertexId b) {
-    const auto hit = edge_hits_.find(MakeEdgeKey(a, b));
-    return hit != edge_hits_.end() && !hit->second.along && hit->second.at == kNoVertex;
-  };
   for (const auto& f : mesh::kTetFaces) {
     const FaceKey key = MakeFaceKey(corners, f);
-    if (face_hits_.contains(key) || splits(key[0], key[1]) || splits(key[1], key[2]) ||
-        splits(key[0], key[2])) {
+    if (face_hits_.contains(key) || IsCutEdge(key[0], key[1], false) ||
+        IsCutEdge(key[1], key[2], false) || IsCutEdge(key[0], key[2], false)) {
       settled_faces_.insert(key);
     }
   }
