@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <functional>
 #include <numeric>
@@ -123,6 +124,36 @@ void KeepIfItTiles(const mesh::TetMesh& mesh, const mesh::TetVertices& corners, 
     total += v;
   }
   if (std::abs(total - volume) > 1e-10 * volume) *split = {};
+}
+
+// The first split `make` gives from `cuts` that tiles the tet (KeepIfItTiles): from the cuts as
+// they are, else with some of those pinned at a snapped corner left out, the fewest first. A
+// pinned cut's point is the corner itself, so leaving one out moves no part of the crack; it
+// changes only the minimal case the pattern reads as (a corner cut off whose third cut is
+// pinned at the far corner, beside two more cuts pinned there, reads as case i without them).
+TetSplit SplitThatTiles(const mesh::TetMesh& mesh, const mesh::TetVertices& corners,
+                        const std::vector<EdgeCut>& cuts,
+                        const std::function<TetSplit(const std::vector<EdgeCut>&)>& make) {
+  std::vector<std::size_t> pinned;
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    if (IsPinned(corners, cuts[k])) pinned.push_back(k);
+  }
+  std::vector<unsigned> left_out(1u << pinned.size());  // bit b: pinned[b] left out
+  std::iota(left_out.begin(), left_out.end(), 0u);
+  std::stable_sort(left_out.begin(), left_out.end(),
+                   [](unsigned a, unsigned b) { return std::popcount(a) < std::popcount(b); });
+  for (const unsigned mask : left_out) {
+    std::vector<EdgeCut> kept;
+    for (std::size_t k = 0, b = 0; k < cuts.size(); ++k) {
+      const bool is_pinned = b < pinned.size() && pinned[b] == k;
+      if (!is_pinned || !(mask >> b & 1u)) kept.push_back(cuts[k]);
+      b += is_pinned;
+    }
+    TetSplit split = make(kept);
+    KeepIfItTiles(mesh, corners, &split);
+    if (!split.tets.empty()) return split;
+  }
+  return {};
 }
 
 // Whether `other` lies beyond the plane through `v` across `far` (by more than `tolerance`
@@ -907,10 +938,13 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
                                        [&](const EdgeCut& c) { return IsPinned(corners, c); })) {
         continue;  // its hits were dropped, or its cuts are at a snapped corner: it stays
       }
-      TetSplit split;
-      if (faces.empty()) split = SplitCompletelyCutTet(corners, cuts);
-      if (faces.size() == 2) split = SplitCrackedTet(corners, cuts, {faces[0], faces[1]}, rest);
-      KeepIfItTiles(*mesh_, corners, &split);
+      const TetSplit split =
+          SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
+            if (faces.empty()) return SplitCompletelyCutTet(corners, kept);
+            if (faces.size() == 2)
+              return SplitCrackedTet(corners, kept, {faces[0], faces[1]}, rest);
+            return TetSplit{};
+          });
       if (split.tets.empty()) {
         failed.push_back(t);
       } else {
@@ -1012,8 +1046,20 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     // A point at a place the previous pose had one moves there (its tets stay the same tets).
     const auto temporary_point = [&](const FaceKey& place, const std::array<VertexId, 4>& from,
                                      const Eigen::Vector4d& weights, bool on_blade = true) {
-      const auto it = points.find(place);
-      if (it != points.end()) return it->second.vertex;
+      if (const auto it = points.find(place); it != points.end()) {
+        // Asked again for another place in the tet (a fallback's apex): moved there.
+        const VertexId v = it->second.vertex;
+        if (it->second.weights != weights) {
+          if (temporary_points_.contains(place)) {  // the previous pose's: put back if not applied
+            moved_points.try_emplace(v,
+                                     Before{mesh_->rest_position(v), mesh_->current_position(v)});
+          }
+          MoveMadeVertex(v, from, weights);
+          it->second.weights = weights;
+          it->second.on_blade = on_blade;
+        }
+        return v;
+      }
       const auto old = temporary_points_.find(place);
       VertexId v;
       if (old != temporary_points_.end()) {
@@ -1064,7 +1110,6 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     std::vector<Plan> plans;
     std::vector<TetId> failed_final;
     bool failed_temporary = false;
-    std::vector<TetId> failed;  // temporary or final
     // Where the blade edge crosses each face, found once per face so both its tets agree.
     absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>
         crossing_of;
@@ -1188,17 +1233,15 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           continue;
         }
       }
-      TetSplit split;
-      if (inputs.apex == Apex::kTip) {
-        // The crack reaches the tip.
-        split = SplitAsStar(corners, cuts, used,
-                            temporary_point(InsidePlace(t), corners, tip_weights), rest);
-      } else if (used.size() == 2) {
-        split = SplitCrackedTet(corners, cuts, {used[0], used[1]}, rest);
-      } else if (used.empty()) {
-        split = SplitCompletelyCutTet(corners, cuts);
-      }
-      KeepIfItTiles(*mesh_, corners, &split);
+      TetSplit split = SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
+        if (inputs.apex == Apex::kTip) {  // the crack reaches the tip
+          return SplitAsStar(corners, kept, used,
+                             temporary_point(InsidePlace(t), corners, tip_weights), rest);
+        }
+        if (used.size() == 2) return SplitCrackedTet(corners, kept, {used[0], used[1]}, rest);
+        if (used.empty()) return SplitCompletelyCutTet(corners, kept);
+        return TetSplit{};
+      });
       if (split.tets.empty() && !used.empty()) {
         // A pattern the minimal cases do not cover (two cracks, say): a cone from the middle
         // of its face points, which lies inside the tet.
@@ -1206,6 +1249,27 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         if (middle.minCoeff() >= kTipMargin) {
           split = SplitAsStar(corners, cuts, used,
                               temporary_point(InsidePlace(t), corners, middle, false), rest);
+          KeepIfItTiles(*mesh_, corners, &split);
+          inputs.apex = Apex::kMiddle;
+        }
+      }
+      if (split.tets.empty() && inside && !used.empty()) {
+        // The blade passes through the tet beside a crack its face points alone do not span
+        // (one face point and a crack through a snapped corner, say, the blade skimming an
+        // edge): a cone from the middle of the blade's chord through the tet, the crack's front.
+        double first = 1, last = 0;  // along the blade, from its tip
+        for (const auto& c : crossings) {
+          if (!c) continue;
+          first = std::min(first, c->t);
+          last = std::max(last, c->t);
+        }
+        if (tip_weights.minCoeff() > 0) first = 0;
+        const Eigen::Vector4d chord = TetBarycentric(
+            current(corners[0]), current(corners[1]), current(corners[2]), current(corners[3]),
+            pose->tip + 0.5 * (first + last) * (pose->heel - pose->tip));
+        if (first <= last && chord.minCoeff() >= kTipMargin) {
+          split = SplitAsStar(corners, cuts, used,
+                              temporary_point(InsidePlace(t), corners, chord, false), rest);
           KeepIfItTiles(*mesh_, corners, &split);
           inputs.apex = Apex::kMiddle;
         }
@@ -1222,11 +1286,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       if (split.tets.empty()) {
         if (inside) {
           ++statistics_.uncovered_temporary_plans;
-          failed.push_back(t);
           failed_temporary = true;
         } else {
           failed_final.push_back(t);
-          failed.push_back(t);
         }
         continue;
       }
@@ -1244,7 +1306,6 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     if (!failed_temporary && failed_final.empty() && tets_change) {
       for (const std::size_t k : NonConformingPlans(plans)) {
         ++statistics_.nonconforming_plans;
-        failed.push_back(plans[k].tet);
         if (plans[k].temporary) {
           failed_temporary = true;
         } else {
@@ -1260,9 +1321,13 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       take_back_unused();  // nothing was applied: the mesh is as it was
       put_back_moved();
       // A snapped vertex no tet has split through for good is taken off the crack where a tet
-      // at it cannot be split (as deferred cutting does), and the pose is tried again.
+      // at it cannot be split for good (as deferred cutting does), and the pose is tried again.
+      // Not where a temporary subdivision fails (the blade skimming an edge, say): the pose is
+      // held and tried again at the next, with the crack as it was (unsnapping drops the cuts
+      // pinned at the vertex that the blade never crossed, and the crack about it may no
+      // longer close).
       std::vector<VertexId> unsnapping;
-      for (const TetId t : failed) {
+      for (const TetId t : failed_final) {
         for (const VertexId v : mesh_->tet_even_if_removed(t)) {
           if (snapped_.contains(v) && !committed_.contains(v)) unsnapping.push_back(v);
         }
