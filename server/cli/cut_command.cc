@@ -119,9 +119,10 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
     const double crack_area = mesh::MeasureCrackArea(*m);
     const bool valid = mesh::FindMeshDefects(*m).empty() &&
                        std::abs(TotalRestVolume(*m) - volume) <= 1e-12 * volume &&
-                       mesh::CheckOriginalFacesTiled(uncut, *m, [&](mesh::TetId t) {
-                         return cutter->SourceTet(t);
-                       }).ok();
+                       mesh::CheckOriginalFacesTiled(
+                           uncut, *m, [&](mesh::TetId t) { return cutter->SourceTet(t); },
+                           [&](mesh::VertexId v) { return cutter->PartedFrom(v); })
+                           .ok();
     if (!valid) report.set_invalid_poses(report.invalid_poses() + 1);
     cut::PoseLag lag;
     if (!withdrawn) {

@@ -507,6 +507,10 @@ TEST(KerfCli, CutSnapsThroughVerticesWhenAsked) {
   EXPECT_EQ(progressive.components(), plain.components());
   EXPECT_EQ(progressive.held_poses(), 0u);
   EXPECT_TRUE(progressive.valid());
+  // Valid after every pose, too: a face the crack runs along is alike from both sides once
+  // copies are taken as the vertices they were parted from.
+  EXPECT_EQ(snapped.invalid_poses(), 0u);
+  EXPECT_EQ(progressive.invalid_poses(), 0u);
   const CliResult bad = Kerf(absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR,
                                           "/server/cut/paths/lattice-straight.json --out ",
                                           ::testing::TempDir(), "/snap.vtu --snap 0.5"));
