@@ -31,9 +31,11 @@ grep -q 'scripts/packages.txt' "$dockerfile" || fail "Dockerfile does not copy s
 runtime=$(grep '^runtime ' "$src/scripts/packages.txt" | cut -d' ' -f2)
 allowed=" $(echo $runtime) libc6 libgcc-s1 zlib1g "  # the last three are in the slim image
 libs=()
+# find -print -quit, not | head -1: under pipefail, find cut off by head's exit (SIGPIPE) failed
+# the script now and then, silently.
 for name in kerf-server kerf kerf-load kerf-haptic kerf-script kerf-health; do
   grep -Eq "/$name( |\\|$)" "$dockerfile" || fail "Dockerfile does not copy $name"
-  binary=$(find "$bin" -type f -name "$name" -perm -u+x | head -1)
+  binary=$(find "$bin" -type f -name "$name" -perm -u+x -print -quit)
   [ -n "$binary" ] || fail "no built $name under $bin"
   libs+=($(ldd "$binary" | awk '/=>/ {print $3}'))
 done
@@ -51,13 +53,13 @@ certs=$(mktemp -d)
 trap 'kill "$server" 2>/dev/null || true; rm -rf "$certs"' EXIT
 "$src/docker/make-certs" "$certs" >/dev/null
 log=$certs/server.log
-"$(find "$bin" -type f -name kerf-server | head -1)" --listen=127.0.0.1:0 --http_listen= --journal_dir="$certs/journal" \
+"$(find "$bin" -type f -name kerf-server -print -quit)" --listen=127.0.0.1:0 --http_listen= --journal_dir="$certs/journal" \
   --tls_cert="$certs/server.pem" --tls_key="$certs/server.key" >"$log" 2>&1 &
 server=$!
 for _ in $(seq 100); do grep -q "listening on" "$log" 2>/dev/null && break; sleep 0.1; done
 address=$(sed -n 's/^kerf-server listening on //p' "$log")
 [ -n "$address" ] || fail "kerf-server with TLS did not start: $(cat "$log")"
-health=$(find "$bin" -type f -name kerf-health | head -1)
+health=$(find "$bin" -type f -name kerf-health -print -quit)
 "$health" --server="$address" --tls_ca="$certs/ca.pem" | grep -q SERVING ||
   fail "kerf-health over TLS did not answer SERVING"
 ! "$health" --server="$address" --timeout_seconds=2 >/dev/null 2>&1 ||
