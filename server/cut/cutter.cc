@@ -1046,30 +1046,28 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     // A point at a place the previous pose had one moves there (its tets stay the same tets).
     const auto temporary_point = [&](const FaceKey& place, const std::array<VertexId, 4>& from,
                                      const Eigen::Vector4d& weights, bool on_blade = true) {
-      if (const auto it = points.find(place); it != points.end()) {
-        // Asked again for another place in the tet (a fallback's apex): moved there.
-        const VertexId v = it->second.vertex;
-        if (it->second.weights != weights) {
-          if (temporary_points_.contains(place)) {  // the previous pose's: put back if not applied
-            moved_points.try_emplace(v,
-                                     Before{mesh_->rest_position(v), mesh_->current_position(v)});
-          }
-          MoveMadeVertex(v, from, weights);
-          it->second.weights = weights;
-          it->second.on_blade = on_blade;
-        }
-        return v;
-      }
+      // This attempt's point there (asked again for a fallback's apex), else the previous
+      // pose's, else a new one; moved where asked (a place's `from` is always the same).
+      const auto now = points.find(place);
+      if (now != points.end() && now->second.weights == weights) return now->second.vertex;
       const auto old = temporary_points_.find(place);
       VertexId v;
-      if (old != temporary_points_.end()) {
+      Eigen::Vector4d at;
+      if (now != points.end()) {
+        v = now->second.vertex;
+        at = now->second.weights;
+      } else if (old != temporary_points_.end()) {
         v = old->second.vertex;
-        if (old->second.weights != weights) {  // a place's `from` is always the same
-          moved_points.try_emplace(v, Before{mesh_->rest_position(v), mesh_->current_position(v)});
-          MoveMadeVertex(v, from, weights);
-        }
+        at = old->second.weights;
       } else {
         v = MakeVertex(from, weights);
+        at = weights;
+      }
+      if (at != weights) {
+        if (old != temporary_points_.end()) {  // the previous pose's: put back if not applied
+          moved_points.try_emplace(v, Before{mesh_->rest_position(v), mesh_->current_position(v)});
+        }
+        MoveMadeVertex(v, from, weights);
       }
       points[place] = {v, weights, on_blade};
       return v;
@@ -1115,6 +1113,10 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         crossing_of;
     for (const TetId t : tets) {
       const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
+      const auto weights_of = [&](const Eigen::Vector3d& p) {  // barycentric, now
+        return TetBarycentric(current(corners[0]), current(corners[1]), current(corners[2]),
+                              current(corners[3]), p);
+      };
       std::array<std::optional<geometry::SegmentTriangleCrossing>, 4> crossings;
       bool inside = false;
       if (pose != nullptr) {
@@ -1192,8 +1194,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       Eigen::Vector4d tip_weights = Eigen::Vector4d::Zero();
       int table_case = 0;
       if (inside) {
-        tip_weights = TetBarycentric(current(corners[0]), current(corners[1]), current(corners[2]),
-                                     current(corners[3]), pose->tip);
+        tip_weights = weights_of(pose->tip);
         std::vector<EdgeCut> crossed;  // the cuts but those pinned at a snapped corner
         std::copy_if(cuts.begin(), cuts.end(), std::back_inserter(crossed),
                      [&](const EdgeCut& c) { return !pinned(c); });
@@ -1242,16 +1243,18 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         if (used.empty()) return SplitCompletelyCutTet(corners, kept);
         return TetSplit{};
       });
+      // Fallbacks: a cone from a point inside the tet (weights on its corners).
+      const auto cone_from = [&](const Eigen::Vector4d& apex) {
+        split = SplitAsStar(corners, cuts, used,
+                            temporary_point(InsidePlace(t), corners, apex, false), rest);
+        KeepIfItTiles(*mesh_, corners, &split);
+        inputs.apex = Apex::kMiddle;
+      };
       if (split.tets.empty() && !used.empty()) {
         // A pattern the minimal cases do not cover (two cracks, say): a cone from the middle
         // of its face points, which lies inside the tet.
         const Eigen::Vector4d middle = used_sum / static_cast<double>(used.size());
-        if (middle.minCoeff() >= kTipMargin) {
-          split = SplitAsStar(corners, cuts, used,
-                              temporary_point(InsidePlace(t), corners, middle, false), rest);
-          KeepIfItTiles(*mesh_, corners, &split);
-          inputs.apex = Apex::kMiddle;
-        }
+        if (middle.minCoeff() >= kTipMargin) cone_from(middle);
       }
       if (split.tets.empty() && inside && !used.empty()) {
         // The blade passes through the tet beside a crack its face points alone do not span
@@ -1264,24 +1267,14 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
           last = std::max(last, c->t);
         }
         if (tip_weights.minCoeff() > 0) first = 0;
-        const Eigen::Vector4d chord = TetBarycentric(
-            current(corners[0]), current(corners[1]), current(corners[2]), current(corners[3]),
-            pose->tip + 0.5 * (first + last) * (pose->heel - pose->tip));
-        if (first <= last && chord.minCoeff() >= kTipMargin) {
-          split = SplitAsStar(corners, cuts, used,
-                              temporary_point(InsidePlace(t), corners, chord, false), rest);
-          KeepIfItTiles(*mesh_, corners, &split);
-          inputs.apex = Apex::kMiddle;
-        }
+        const Eigen::Vector4d chord =
+            weights_of(pose->tip + 0.5 * (first + last) * (pose->heel - pose->tip));
+        if (first <= last && chord.minCoeff() >= kTipMargin) cone_from(chord);
       }
       if (split.tets.empty() && inside && !opens && !cuts.empty()) {
         // Every cut closed (the blade on the tet's edges): nothing opens here, but the tet
         // must meet its neighbours' faces at those points; a cone from its middle does.
-        split = SplitAsStar(
-            corners, cuts, used,
-            temporary_point(InsidePlace(t), corners, Eigen::Vector4d::Constant(0.25), false), rest);
-        KeepIfItTiles(*mesh_, corners, &split);
-        inputs.apex = Apex::kMiddle;
+        cone_from(Eigen::Vector4d::Constant(0.25));
       }
       if (split.tets.empty()) {
         if (inside) {
