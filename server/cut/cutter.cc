@@ -89,6 +89,12 @@ mesh::TetMesh::TetList LiveTetsAround(const mesh::TetMesh& mesh,
 // from it would make slivers.
 constexpr double kTipMargin = 1e-3;
 
+// A tet with a cut this close (fraction of its edge) to a corner is not given points where its
+// crack ends (Cutter::EndCracksOnFaces): its pieces at that corner would be slivers, and in a
+// live cut such slivers, stretched tenfold as the crack opened, blew backward Euler up with the
+// corotational law (the liver; at 0.01 and 0.02 too). Its hits are dropped as before.
+constexpr double kCrackEndMargin = 0.05;
+
 // The tet's volume at rest, positive when its corners are in the mesh's order.
 double SignedVolume(const mesh::TetMesh& mesh, const mesh::TetVertices& t) {
   return geometry::SignedVolume(mesh.rest_position(t[0]), mesh.rest_position(t[1]),
@@ -231,8 +237,11 @@ void Cutter::Finish() {
     SplitReadyGroups(nullptr, nullptr);
   } else {
     // The crack stays where the blade left it: its temporary face points become permanent
-    // (the tip's point goes with the temporary tets).
-    MakePermanent([](const FaceKey& place, VertexId) { return place[0] != place[1]; });
+    // (the tip's point goes with the temporary tets, and a closed cut's point, on an edge,
+    // with the edge's cut, which opens now).
+    MakePermanent([](const FaceKey& place, VertexId) {
+      return place[0] != place[1] && place[1] != place[2];
+    });
     UpdateOpenTets(nullptr);
   }
   previous_.reset();
@@ -500,12 +509,13 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
   const auto on_crack = [&](VertexId v) { return snapped_.contains(v) || to_snap.contains(v); };
   // Every edge from a snapped vertex to the far side is cut at it, and one between two lies
   // along the crack. A hit waiting on an edge to its own side keeps a vertex off the crack;
-  // so does, progressive, a cut at it already made or a face at it split for good (its tets
-  // would split differently from their neighbours).
+  // so does a tet at it split for good, or (progressive) a cut at it already made or a face at
+  // it split for good (its tets would split differently from their neighbours).
   std::vector<VertexId> snapping;
   for (const auto& [v, far] : to_snap) {
     bool keeps_off = false;
     for (const TetId t : OwnersAt(v)) {
+      keeps_off |= MadeByCut(t);
       const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
       for (const VertexId other : corners) {
         const auto hit = edge_hits_.find(MakeEdgeKey(v, other));
@@ -990,6 +1000,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       }
     }
     if (statistics_.unsnapped_vertices > unsnapped_before) continue;
+    if (EndCracksOnFaces(failed)) continue;
     // Drop the hits of the tets that cannot be split, with the vertices made for them (no
     // tet uses those yet), and look at the group again.
     for (const TetId t : failed) {
@@ -1334,6 +1345,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         last_pose_.held = true;
         break;
       }
+      if (EndCracksOnFaces(failed_final)) continue;
       for (const TetId t : failed_final) {
         OpenTet& open = open_.at(t);
         const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
@@ -1554,6 +1566,47 @@ void Cutter::MakePermanent(const std::function<bool(const FaceKey&, VertexId)>& 
     if (place[0] != place[1]) face_hits_[place] = {point.weights.head<3>(), point.vertex};
     temporary_points_.erase(it++);
   }
+}
+
+bool Cutter::EndCracksOnFaces(const std::vector<TetId>& tets) {
+  bool added = false;
+  for (const TetId t : tets) {
+    const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
+    bool near_corner = false;
+    for (const auto& [i, j] : mesh::kTetEdges) {
+      const auto hit = edge_hits_.find(MakeEdgeKey(corners[i], corners[j]));
+      if (hit == edge_hits_.end() || hit->second.at != kNoVertex || hit->second.along) continue;
+      near_corner |= std::min(hit->second.fraction, 1 - hit->second.fraction) < kCrackEndMargin;
+    }
+    if (near_corner) continue;
+    for (const auto& f : mesh::kTetFaces) {
+      const FaceKey key = MakeFaceKey(corners, f);
+      // Not a face the blade crossed at the last pose: its point is the blade's.
+      if (face_hits_.contains(key) || temporary_points_.contains(key)) continue;
+      int cut = -1, cuts = 0;  // the cut edge: key[cut] to key[(cut + 1) % 3]
+      for (int m = 0; m < 3; ++m) {
+        if (IsCutEdge(key[m], key[(m + 1) % 3], false)) {
+          cut = m;
+          ++cuts;
+        }
+      }
+      // Not beside a snapped vertex (its pinned cuts and the edges along the crack make
+      // other patterns).
+      const bool snapped =
+          std::any_of(key.begin(), key.end(), [&](VertexId v) { return snapped_.contains(v); });
+      if (cuts != 1 || snapped || !Realisable(key)) continue;
+      // The key is in increasing id order but for the edge from its last vertex to its first.
+      const VertexId a = key[cut], b = key[(cut + 1) % 3];
+      const double from_low = edge_hits_.at(MakeEdgeKey(a, b)).fraction;
+      Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+      barycentric[cut] = Index(a) < Index(b) ? 1 - from_low : from_low;
+      barycentric[(cut + 1) % 3] = 1 - barycentric[cut];
+      face_hits_[key] = {0.5 * barycentric + Eigen::Vector3d::Constant(1.0 / 6)};
+      ++statistics_.ended_cracks;
+      added = true;
+    }
+  }
+  return added;
 }
 
 void Cutter::CloseOpenTet(TetId t) {

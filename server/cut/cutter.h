@@ -105,6 +105,9 @@ struct CutStatistics {
   std::size_t unsnapped_vertices = 0;
   // Copies made where the crack through a snapped vertex parted its tets.
   std::size_t parted_vertices = 0;
+  // Faces given a point where the crack ends: it met them at one cut edge, and no path of the
+  // blade's crossed them (see Cutter::EndCracksOnFaces).
+  std::size_t ended_cracks = 0;
   // Progressive: crossings of an edge or face that a tet the blade is in does not have among its
   // own (made by a final subdivision beside it), skipped: it could not split them alike.
   std::size_t unrealisable_hits = 0;
@@ -281,6 +284,15 @@ class Cutter {
   // side: the plan there, or the live tets there if its tet is not open. Applying them all
   // keeps the mesh conforming exactly when this is empty. O(plans * pieces).
   std::vector<std::size_t> NonConformingPlans(const std::vector<Plan>& plans) const;
+  // Progressive: each face of the `tets` (the blade has left them, and they could not be
+  // split) with one cut edge and no point gets a point halfway from the cut to the face's
+  // middle, where the crack ends (the tet across the face shares it). Where the blade crossed
+  // an edge beside a vertex, or the tissue's motion carried an edge across the blade, neither
+  // the tip's path nor another cut may close the crack on such a face, and no case covers it.
+  // Returns whether any point was added. Not a face a final subdivision has split already, nor
+  // a tet with a cut near a corner (see kCrackEndMargin), nor a face the blade crossed at the
+  // last pose (progressive: its point is the blade's).
+  bool EndCracksOnFaces(const std::vector<mesh::TetId>& tets);
   // Makes the temporary points `which` picks (by place and vertex) permanent: a face point
   // becomes that face's hit, a point inside a tet an ordinary vertex.
   void MakePermanent(const std::function<bool(const FaceKey&, mesh::VertexId)>& which);
@@ -302,7 +314,7 @@ class Cutter {
                            std::vector<EdgeKey>* new_edges);
   // Puts each vertex on the crack, to be parted from the side its direction points to: the hits
   // waiting at it are taken at it and its tets join one group. Not a vertex with a hit waiting
-  // on an edge to its own side.
+  // on an edge to its own side, nor one at a tet split for good.
   void Snap(const absl::flat_hash_map<mesh::VertexId, Eigen::Vector3d>& to_snap);
   // The hit `key` of an edge between the snapped vertices `a` and `b`, made along the crack or
   // cut at one of them.

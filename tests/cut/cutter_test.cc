@@ -128,6 +128,35 @@ TEST(Cutter, ABladeWhoseTipStaysInsideLeavesACrack) {
   EXPECT_NEAR(BoundaryArea(m) - area, 2 * 0.02 * 0.0093, 0.1 * 2 * 0.02 * 0.0093);
 }
 
+// A blade put into the bar and moved 4 mm sideways: the crack's edges are its tip's path, on
+// which the cutter finds face points, and the blade where it started and its heel's path, on
+// which it finds none; a tet whose crack meets a face at one cut edge there ends it on that
+// face (before, such tets could not be split and their hits were dropped).
+TEST(Cutter, ACrackWhoseEdgeNoPathCrossesEndsOnTheFacesItMeets) {
+  for (const CutMode mode : {CutMode::kDeferred, CutMode::kProgressive}) {
+    SCOPED_TRACE(mode == CutMode::kDeferred ? "deferred" : "progressive");
+    TetMesh m = Bar();
+    const double volume = RestVolume(m);
+    const double area = BoundaryArea(m);
+    Cutter cutter = *Cutter::Create(&m, 0.01, {}, mode);
+    double time = 0;
+    Sweep(cutter, m, {0.0337, 0.0083, 0.0047}, {0.0337, 0.0083, 0.0153}, {0, 0.004, 0}, &time);
+    cutter.Finish();
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_NEAR(RestVolume(m), volume, 1e-12 * volume);
+    EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
+    const CutStatistics& s = cutter.statistics();
+    EXPECT_EQ(s.dropped_hits, 0u);
+    EXPECT_GT(s.ended_cracks, 0u);
+    EXPECT_GT(s.cut_tets, 0u);
+    std::printf("%s: %zu tets cut, %zu crack ends added, crack faces %.1f mm2 (swept 42.4)\n",
+                mode == CutMode::kDeferred ? "deferred" : "progressive", s.cut_tets, s.ended_cracks,
+                1e6 * (BoundaryArea(m) - area) / 2);
+    // The crack's two faces: about the swept 4 mm x 10.6 mm, its ends straight across tets.
+    EXPECT_GT(BoundaryArea(m) - area, 2 * 0.5 * 0.004 * 0.0106);
+  }
+}
+
 // Blades on the lattice's own planes and lines pass exactly through vertices, along edges and
 // in the planes of faces; they also reverse and hesitate there. Every pose leaves a valid,
 // conforming mesh of the same volume, and crossings too close to a vertex or edge are counted.

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstdio>
 #include <set>
 
 #include "absl/strings/str_cat.h"
@@ -129,13 +130,19 @@ TEST(ProgressiveCutting, EndsLikeDeferredCuttingWhenTheBladeLeaves) {
 }
 
 // The blade stops, hesitates and turns back inside tets, and is withdrawn there: the crack it
-// made stays (the deferred cutter cannot realise it and drops it).
+// made stays, in both modes (deferred cutting ends it on the faces where the blade left it).
 TEST(ProgressiveCutting, ACrackWithdrawnInsideTetsStays) {
   for (const ScriptedPath& path : ProgressiveCasePaths()) {
     if (path.name != "stop-turn-withdraw") continue;
     const PathResult progressive = CutChecked(path, CutMode::kProgressive);
     EXPECT_GT(progressive.crack_area, 0.5 * 0.007 * 0.0073);  // 12.5 mm travelled, 7.3 mm deep
     EXPECT_GT(progressive.statistics.frozen_tets + progressive.statistics.cut_tets, 0u);
+    const PathResult deferred = CutChecked(path, CutMode::kDeferred);
+    std::printf("withdrawn inside: crack %.1f mm2 progressive, %.1f deferred (%zu hits dropped)\n",
+                1e6 * progressive.crack_area, 1e6 * deferred.crack_area,
+                deferred.statistics.dropped_hits);
+    EXPECT_GT(deferred.crack_area, 0.5 * 0.007 * 0.0073);
+    EXPECT_EQ(deferred.statistics.dropped_hits, 0u);
     return;
   }
   FAIL() << "no stop-turn-withdraw path";
