@@ -1345,7 +1345,9 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         last_pose_.held = true;
         break;
       }
-      if (EndCracksOnFaces(failed_final)) continue;
+      // Only once the blade is withdrawn: ended in a live cut, such cracks let the tissue
+      // flail against the blade (the liver, corotational: backward Euler blew up).
+      if (pose == nullptr && EndCracksOnFaces(failed_final)) continue;
       for (const TetId t : failed_final) {
         OpenTet& open = open_.at(t);
         const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);

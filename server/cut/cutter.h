@@ -284,14 +284,14 @@ class Cutter {
   // side: the plan there, or the live tets there if its tet is not open. Applying them all
   // keeps the mesh conforming exactly when this is empty. O(plans * pieces).
   std::vector<std::size_t> NonConformingPlans(const std::vector<Plan>& plans) const;
-  // Progressive: each face of the `tets` (the blade has left them, and they could not be
-  // split) with one cut edge and no point gets a point halfway from the cut to the face's
-  // middle, where the crack ends (the tet across the face shares it). Where the blade crossed
-  // an edge beside a vertex, or the tissue's motion carried an edge across the blade, neither
-  // the tip's path nor another cut may close the crack on such a face, and no case covers it.
-  // Returns whether any point was added. Not a face a final subdivision has split already, nor
-  // a tet with a cut near a corner (see kCrackEndMargin), nor a face the blade crossed at the
-  // last pose (progressive: its point is the blade's).
+  // Each face of the `tets` (deferred: a group the blade has left; progressive: once the blade
+  // is withdrawn; they could not be split) with one cut edge and no point gets a point halfway from
+  // the cut to the face's middle, where the crack ends (the tet across the face shares it). Where
+  // the blade crossed an edge beside a vertex, or the tissue's motion carried an edge across the
+  // blade, neither the tip's path nor another cut may close the crack on such a face, and no case
+  // covers it. Returns whether any point was added. Not a face a final subdivision has split
+  // already, nor a tet with a cut near a corner (see kCrackEndMargin), nor a face the blade crossed
+  // at the last pose (progressive: its point is the blade's).
   bool EndCracksOnFaces(const std::vector<mesh::TetId>& tets);
   // Makes the temporary points `which` picks (by place and vertex) permanent: a face point
   // becomes that face's hit, a point inside a tet an ordinary vertex.
