@@ -120,8 +120,7 @@ absl::StatusOr<std::string> ProgressiveCases(bool json) {
 // critical step re-estimated after every cut, explicit in sub-steps of 1 ms, and backward
 // Euler at 1 ms.
 absl::StatusOr<std::string> LiveCut(bool json) {
-  // A row that no longer blows up among slivers may crawl (sub-steps): 30 s of wall time each.
-  const sim::LiveCutOptions options = {.max_wall_seconds = 30};
+  const sim::LiveCutOptions options = {.max_wall_seconds = kRowWallSeconds};
   kerf::v1::LiveCutExperiment experiment;
   experiment.set_scene("lattice-tension");
   experiment.set_path("lattice-straight");
@@ -181,8 +180,7 @@ absl::StatusOr<std::string> LiveCut(bool json) {
         "| %s | %s | %s | %.3f | %s | %.3g | %.3g | %.3g | %.3g | %.4g | %u | %u "
         "| %u | %u | %s | %.3g | %u, %u | %u, %u |\n",
         r.integration(), r.cut_mode(), r.blew_up() ? "YES" : "no", r.blew_up_after(),
-        r.stopped_after() > 0 ? absl::StrFormat("%.3f", r.stopped_after()) : "-",
-        r.largest_energy_ratio(), r.largest_speed(), 1e3 * r.smallest_height(),
+        StoppedAfterCell(r), r.largest_energy_ratio(), r.largest_speed(), 1e3 * r.smallest_height(),
         1e6 * r.critical_time_step(), 1e6 * r.time_step(), r.cut_tets(), r.tets_after(),
         r.held_poses(), r.dropped_hits(), r.valid() ? "yes" : "NO",
         r.wall_seconds_per_simulated_second(), r.solve_iterations_median(),

@@ -94,13 +94,16 @@ std::string FormatStability(const kerf::v1::StabilityExperiment& experiment) {
         r.snap_fraction() > 0 ? absl::StrFormat("%s, snap %g", r.cut_mode(), r.snap_fraction())
                               : r.cut_mode(),
         r.integration(), r.law(), r.blew_up() ? "YES" : "no", r.blew_up_after(),
-        r.stopped_after() > 0 ? absl::StrFormat("%.3f", r.stopped_after()) : std::string("-"),
-        r.largest_energy_ratio(), 1e6 * r.critical_time_step(), 1e6 * r.time_step(),
-        r.sub_steps_median(), r.sub_steps_max(), r.smallest_radius_ratio(),
+        StoppedAfterCell(r), r.largest_energy_ratio(), 1e6 * r.critical_time_step(),
+        1e6 * r.time_step(), r.sub_steps_median(), r.sub_steps_max(), r.smallest_radius_ratio(),
         r.smallest_dihedral_deg(), r.cut_tets(), r.held_poses(), r.dropped_hits(),
         r.valid() ? "yes" : "NO", r.wall_seconds_per_simulated_second());
   }
   return out;
+}
+
+std::string StoppedAfterCell(const kerf::v1::LiveCutRow& row) {
+  return row.stopped_after() > 0 ? absl::StrFormat("%.3f", row.stopped_after()) : "-";
 }
 
 }  // namespace kerf::cli

@@ -19,16 +19,23 @@ namespace kerf::cli {
 // The snapping rows' fraction: the open cutters' 0.2 of an edge (../shared/design/cutting.md).
 inline constexpr double kStabilitySnapFraction = 0.2;
 
+// A live-cut row of the experiments (this matrix, `kerf experiment live-cut`) stops after this
+// much wall time (s): a row that does not blow up among slivers may crawl, and at that rate it
+// is far from real time anyway.
+inline constexpr double kRowWallSeconds = 30;
+
 struct StabilityOptions {
   std::vector<std::string> scenes = {"lattice-tension", "lattice-poor"};
   std::string liver_mesh_path;  // adds the liver when set
-  // A row stops after 30 s of wall time: at that rate a run is far from real time anyway.
-  sim::LiveCutOptions live_cut = {.max_wall_seconds = 30};
+  sim::LiveCutOptions live_cut = {.max_wall_seconds = kRowWallSeconds};
 };
 
 absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOptions& options);
 
 // The matrix as one Markdown table.
 std::string FormatStability(const kerf::v1::StabilityExperiment& experiment);
+
+// A row's "stopped after (s)" table cell: "-" for a row that ran to its end or blew up.
+std::string StoppedAfterCell(const kerf::v1::LiveCutRow& row);
 
 }  // namespace kerf::cli

@@ -393,7 +393,8 @@ TEST(KerfCli, LiveCutExperimentShowsExplicitBlowUpsAndImplicitStability) {
   kerf::v1::LiveCutExperiment experiment;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
   ASSERT_EQ(experiment.rows_size(), 8);
-  EXPECT_EQ(experiment.max_wall_seconds(), 30);  // a row's budget: the sub-stepped one crawls
+  // A row's wall-time budget: a sub-stepped row among slivers may crawl.
+  EXPECT_EQ(experiment.max_wall_seconds(), 30);
   for (const int i : {0, 1}) {  // explicit, 1 ms: deferred, progressive
     const kerf::v1::LiveCutRow& r = experiment.rows(i);
     EXPECT_TRUE(r.blew_up()) << r.cut_mode();
