@@ -359,6 +359,7 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
   std::vector<Crossing> crossings;
   std::vector<EdgeKey> new_edges;
   std::vector<FaceKey> new_faces;
+  closed_this_pose_.clear();
   // The grid lists the tets in the cells the swept surface's box covers; keep those whose own
   // box meets it (the blade can only be inside those, too).
   std::vector<TetId> near = grid_.Candidates(low, high);
@@ -405,6 +406,8 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
         ++statistics_.degenerate_hits;
       } else if (!Realisable(key)) {
         ++statistics_.unrealisable_hits;
+      } else if (const std::optional<EdgeKey> edge = SnapToEdge(key, crossing->barycentric)) {
+        new_edges.push_back(*edge);
       } else {
         face_hits_[key] = {crossing->barycentric};
         new_faces.push_back(key);
@@ -468,6 +471,18 @@ void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
     Snap(to_snap);
   }
   for (const Crossing& c : crossings) {
+    if (const auto hit = edge_hits_.find(c.key); hit != edge_hits_.end() && hit->second.closed) {
+      if (closed_this_pose_.contains(c.key)) {
+        // The tip passed just beyond the edge: the crack's front still crosses it, where the
+        // blade did.
+        if (c.fraction > kDegenerate && c.fraction < 1 - kDegenerate)
+          hit->second.fraction = c.fraction;
+        continue;
+      }
+      // The crack's front was taken to cross the edge; now the blade does, deeper: the
+      // crossing is used as found, and the tip's crossings beside the edge are face points.
+      UnsnapEdge(c.key);
+    }
     if (const auto hit = edge_hits_.find(c.key); hit != edge_hits_.end()) {
       hit->second.fraction = c.fraction;  // cut at its snapped vertex, and now crossed
       hit->second.crossed = true;
@@ -520,7 +535,7 @@ void Cutter::Snap(const absl::flat_hash_map<VertexId, Eigen::Vector3d>& to_snap)
       for (const VertexId other : corners) {
         const auto hit = edge_hits_.find(MakeEdgeKey(v, other));
         if (other == v || hit == edge_hits_.end()) continue;
-        keeps_off |= hit->second.near_low != kNoVertex;
+        keeps_off |= hit->second.near_low != kNoVertex || hit->second.closed;
         if (!on_crack(other)) keeps_off |= !Beyond(*mesh_, v, other, far);
       }
       for (const auto& f : mesh::kTetFaces) {
@@ -575,6 +590,101 @@ void Cutter::MarkEdgeBetweenSnapped(EdgeKey key, VertexId a, VertexId b) {
   hit.along = snapped_.at(a).far.dot(snapped_.at(b).far) > 0;
   hit.at = hit.along ? kNoVertex : (Index(a) < Index(b) ? a : b);
   if (!hit.crossed) hit.fraction = 0;  // at the lower id's end
+}
+
+std::optional<Cutter::EdgeKey> Cutter::SnapToEdge(const FaceKey& key,
+                                                  const Eigen::Vector3d& barycentric) {
+  if (mode_ != CutMode::kDeferred || snap_fraction_ == 0) return std::nullopt;
+  int far = 0;  // the corner opposite the edge it is near
+  const double least = barycentric.minCoeff(&far);
+  const double middle = barycentric.sum() - least - barycentric.maxCoeff();
+  // Near a vertex it would cut a short piece off the edge: it stays a face point.
+  if (least >= snap_fraction_ || middle < snap_fraction_) return std::nullopt;
+  const int low = far == 0 ? 1 : 0, high = far == 2 ? 1 : 2;  // the edge's ends in the key
+  const EdgeKey edge = MakeEdgeKey(key[low], key[high]);
+  const auto hit = edge_hits_.find(edge);
+  if ((hit != edge_hits_.end() && !hit->second.closed) || snapped_.contains(key[low]) ||
+      snapped_.contains(key[high])) {
+    return std::nullopt;
+  }
+  if (hit == edge_hits_.end()) {
+    edge_hits_[edge] = {.fraction = barycentric[high] / (barycentric[low] + barycentric[high]),
+                        .crossed = false,
+                        .closed = true};
+  }
+  edge_snapped_faces_[edge].emplace_back(key, barycentric);
+  closed_this_pose_.insert(edge);
+  ++statistics_.edge_snapped_hits;
+  return edge;
+}
+
+void Cutter::UnsnapEdge(EdgeKey key) {
+  const auto hit = edge_hits_.find(key);
+  assert(hit != edge_hits_.end() && hit->second.closed);
+  if (hit->second.near_low != kNoVertex) (void)mesh_->RemoveVertex(hit->second.near_low);
+  edge_hits_.erase(hit);
+  for (const auto& [face, barycentric] : edge_snapped_faces_[key]) {
+    face_hits_.try_emplace(face, FaceHit{barycentric});
+  }
+  edge_snapped_faces_.erase(key);
+}
+
+TetSplit Cutter::SplitAsCone(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                             const std::vector<FacePoint>& faces, std::vector<VertexId>* apexes) {
+  if (cuts.size() == 1 && faces.empty() && cuts[0].near_a == cuts[0].near_b &&
+      !IsPinned(corners, cuts[0])) {
+    TetSplit split = SplitAtClosedCut(corners, cuts[0]);
+    KeepIfItTiles(*mesh_, corners, &split);
+    return split;
+  }
+  // Cut through, the crack's end on a face (between two closed cuts): a complete cut whose
+  // closed cuts' copies are one vertex.
+  if (faces.empty()) {
+    TetSplit split = SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
+      return SplitCompletelyCutTet(corners, kept);
+    });
+    if (!split.tets.empty()) return split;
+  }
+  // The apex's weights on the corners: the mean of the front's points, on the crack.
+  Eigen::Vector4d front = Eigen::Vector4d::Zero();
+  int points = 0;
+  bool cracked = !faces.empty();
+  for (const EdgeCut& c : cuts) {
+    cracked |= c.near_a != c.near_b;
+    if (c.near_a != c.near_b || IsPinned(corners, c)) continue;
+    // corner_a is the lower id (EdgeCutsOf), the end the fraction is measured from.
+    const double fraction =
+        edge_hits_.at(MakeEdgeKey(corners[c.corner_a], corners[c.corner_b])).fraction;
+    front[c.corner_a] += 1 - fraction;
+    front[c.corner_b] += fraction;
+    ++points;
+  }
+  for (const FacePoint& f : faces) {
+    const FaceKey key = MakeFaceKey(corners, mesh::kTetFaces[f.face]);
+    const Eigen::Vector3d& barycentric = face_hits_.at(key).barycentric;
+    for (int m = 0; m < 4; ++m) {
+      const auto at = std::find(key.begin(), key.end(), corners[m]);
+      if (at != key.end()) front[m] += barycentric[at - key.begin()];
+    }
+    ++points;
+  }
+  // The middle of the tet, strictly inside it, sees every face: the cone from it tiles the tet
+  // whenever its faces can be triangulated (the crack then ends there).
+  std::vector<Eigen::Vector4d> weights = {Eigen::Vector4d::Constant(0.25)};
+  if (cracked && points > 1) weights.insert(weights.begin(), front / points);
+  const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
+  for (const Eigen::Vector4d& w : weights) {
+    const VertexId apex = MakeVertex(corners, w);
+    TetSplit split = SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
+      return SplitAsStar(corners, kept, faces, apex, rest);
+    });
+    if (!split.tets.empty()) {
+      apexes->push_back(apex);
+      return split;
+    }
+    (void)mesh_->RemoveVertex(apex);
+  }
+  return {};
 }
 
 void Cutter::Commit(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts) {
@@ -887,6 +997,12 @@ std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
       continue;
     }
     const Eigen::Vector4d weights(1 - hit.fraction, hit.fraction, 0, 0);
+    if (hit.closed) {  // the crack's front crosses the edge: one vertex
+      if (hit.near_low == kNoVertex)
+        hit.near_low = hit.near_high = MakeVertex({lo, hi, lo, lo}, weights);
+      cuts.push_back({i_low ? i : j, i_low ? j : i, hit.near_low, hit.near_low});
+      continue;
+    }
     if (pose != nullptr && hit.near_low == kNoVertex) {
       const Eigen::Vector3d a = mesh_->current_position(lo), b = mesh_->current_position(hi);
       const Eigen::Vector3d point = a + hit.fraction * (b - a);
@@ -912,9 +1028,18 @@ std::vector<FacePoint> Cutter::FacePointsOf(const mesh::TetVertices& corners) co
   for (int k = 0; k < 4; ++k) {
     const auto& face = mesh::kTetFaces[k];
     const auto it = face_hits_.find(MakeFaceKey(corners, face));
-    if (it != face_hits_.end()) points.push_back({k, it->second.vertex});
+    if (it != face_hits_.end() && !AtSnappedVertex(it->first, it->second)) {
+      points.push_back({k, it->second.vertex});
+    }
   }
   return points;
+}
+
+bool Cutter::AtSnappedVertex(const FaceKey& key, const FaceHit& hit) const {
+  int nearest = 0;
+  const double most = hit.barycentric.maxCoeff(&nearest);
+  const double middle = hit.barycentric.sum() - most - hit.barycentric.minCoeff();
+  return middle < snap_fraction_ && snapped_.contains(key[nearest]);
 }
 
 TetId Cutter::SourceTet(TetId t) const {
@@ -930,7 +1055,8 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       const mesh::TetVertices v = mesh_->tet(t);
       for (const auto& face : mesh::kTetFaces) {
         const auto it = face_hits_.find(MakeFaceKey(v, face));
-        if (it != face_hits_.end() && it->second.vertex == kNoVertex) {
+        if (it != face_hits_.end() && it->second.vertex == kNoVertex &&
+            !AtSnappedVertex(it->first, it->second)) {
           const FaceKey& k = it->first;
           it->second.vertex = MakeVertex(
               {k[0], k[1], k[2], k[0]},
@@ -940,6 +1066,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
     }
     std::vector<std::pair<TetId, TetSplit>> splits;
     std::vector<TetId> failed;
+    std::vector<VertexId> apexes;  // made for the cones (SplitAsCone)
     for (const TetId t : group) {
       const mesh::TetVertices corners = mesh_->tet(t);
       const std::vector<EdgeCut> cuts = EdgeCutsOf(corners);
@@ -948,13 +1075,22 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
                                        [&](const EdgeCut& c) { return IsPinned(corners, c); })) {
         continue;  // its hits were dropped, or its cuts are at a snapped corner: it stays
       }
-      const TetSplit split =
-          SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
-            if (faces.empty()) return SplitCompletelyCutTet(corners, kept);
-            if (faces.size() == 2)
-              return SplitCrackedTet(corners, kept, {faces[0], faces[1]}, rest);
-            return TetSplit{};
-          });
+      const bool closed = std::any_of(cuts.begin(), cuts.end(), [&](const EdgeCut& c) {
+        return c.near_a == c.near_b && !IsPinned(corners, c);
+      });
+      TetSplit split =
+          closed ? SplitAsCone(corners, cuts, faces, &apexes)
+                 : SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
+                     if (faces.empty()) return SplitCompletelyCutTet(corners, kept);
+                     if (faces.size() == 2)
+                       return SplitCrackedTet(corners, kept, {faces[0], faces[1]}, rest);
+                     return TetSplit{};
+                   });
+      // Snapping leaves patterns no case covers beside snapped vertices (the crack's front
+      // through one): such a tet is split as a cone.
+      if (split.tets.empty() && !closed && snap_fraction_ > 0) {
+        split = SplitAsCone(corners, cuts, faces, &apexes);
+      }
       if (split.tets.empty()) {
         failed.push_back(t);
       } else {
@@ -979,6 +1115,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       for (const mesh::TetVertices& corners : group_corners) {
         for (const auto& [i, j] : mesh::kTetEdges) {
           edge_hits_.erase(MakeEdgeKey(corners[i], corners[j]));
+          edge_snapped_faces_.erase(MakeEdgeKey(corners[i], corners[j]));
         }
         for (const auto& f : mesh::kTetFaces) face_hits_.erase(MakeFaceKey(corners, f));
       }
@@ -991,15 +1128,25 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       PartSnappedVertices(std::move(snapped));
       break;
     }
+    for (const VertexId apex : apexes) (void)mesh_->RemoveVertex(apex);
     // A tet that cannot be split with snapped points is tried without them: its snapped
-    // vertices give their hits back as they were found.
-    const std::size_t unsnapped_before = statistics_.unsnapped_vertices;
+    // vertices give their hits back as they were found, its closed cuts their face points.
+    const std::size_t unsnapped_before =
+        statistics_.unsnapped_vertices + statistics_.unsnapped_edges;
     for (const TetId t : failed) {
-      for (const VertexId v : mesh_->tet(t)) {
+      const mesh::TetVertices corners = mesh_->tet(t);
+      for (const VertexId v : corners) {
         if (snapped_.contains(v)) Unsnap(v);
       }
+      for (const auto& [i, j] : mesh::kTetEdges) {
+        const EdgeKey key = MakeEdgeKey(corners[i], corners[j]);
+        if (const auto hit = edge_hits_.find(key); hit != edge_hits_.end() && hit->second.closed) {
+          UnsnapEdge(key);
+          ++statistics_.unsnapped_edges;
+        }
+      }
     }
-    if (statistics_.unsnapped_vertices > unsnapped_before) continue;
+    if (statistics_.unsnapped_vertices + statistics_.unsnapped_edges > unsnapped_before) continue;
     if (EndCracksOnFaces(failed)) continue;
     // Drop the hits of the tets that cannot be split, with the vertices made for them (no
     // tet uses those yet), and look at the group again.
@@ -1009,7 +1156,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
         const auto it = edge_hits_.find(MakeEdgeKey(v[i], v[j]));
         if (it == edge_hits_.end()) continue;
         for (const VertexId made : {it->second.near_low, it->second.near_high}) {
-          if (made != kNoVertex) (void)mesh_->RemoveVertex(made);
+          if (made != kNoVertex && mesh_->IsAlive(made)) (void)mesh_->RemoveVertex(made);
         }
         edge_hits_.erase(it);
         ++statistics_.dropped_hits;
@@ -1586,17 +1733,20 @@ bool Cutter::EndCracksOnFaces(const std::vector<TetId>& tets) {
       // Not a face the blade crossed at the last pose: its point is the blade's.
       if (face_hits_.contains(key) || temporary_points_.contains(key)) continue;
       int cut = -1, cuts = 0;  // the cut edge: key[cut] to key[(cut + 1) % 3]
+      bool closed = false;     // the crack's front crosses an edge of it: it ends there
       for (int m = 0; m < 3; ++m) {
         if (IsCutEdge(key[m], key[(m + 1) % 3], false)) {
           cut = m;
           ++cuts;
         }
+        const auto hit = edge_hits_.find(MakeEdgeKey(key[m], key[(m + 1) % 3]));
+        closed |= hit != edge_hits_.end() && hit->second.closed;
       }
       // Not beside a snapped vertex (its pinned cuts and the edges along the crack make
       // other patterns).
       const bool snapped =
           std::any_of(key.begin(), key.end(), [&](VertexId v) { return snapped_.contains(v); });
-      if (cuts != 1 || snapped || !Realisable(key)) continue;
+      if (cuts != 1 || closed || snapped || !Realisable(key)) continue;
       // The key is in increasing id order but for the edge from its last vertex to its first.
       const VertexId a = key[cut], b = key[(cut + 1) % 3];
       const double from_low = edge_hits_.at(MakeEdgeKey(a, b)).fraction;

@@ -83,7 +83,13 @@ inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 // with it, it is taken off the crack (unsnapped), unless (progressive) a tet has split through
 // it for good: it is then committed, and a crossing on its own side is cut as found. While it
 // waits, the crack does not open at it: progressive cutting lags the blade by up to a tet
-// there. 0: no snapping.
+// there. Deferred cutting also snaps to an edge: where the tip's path crosses a face within
+// the fraction (barycentric) of one of its edges, and not of a vertex, the crack's front is
+// taken to cross that edge instead (a closed cut: the edge is split at one vertex, not parted;
+// every tet at it splits there), and the face point, which would make slivers along the edge,
+// is not made. A tet that cannot be split with it takes the face points back. A face crossing
+// as near a snapped vertex makes no point either (the front passes through the vertex), and a
+// tet no case covers is split as a cone (see Cutter::SplitAsCone). 0: no snapping.
 inline constexpr double kDefaultSnapFraction = 0;
 
 // The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
@@ -96,7 +102,7 @@ inline constexpr int kProgressiveCases = 11;
 struct CutStatistics {
   std::size_t cut_tets = 0;                   // original tets replaced
   std::size_t new_tets = 0;                   // tets that replaced them
-  std::array<std::size_t, 7> tets_by_case{};  // cut tets by CutCase (index = enum value)
+  std::array<std::size_t, 8> tets_by_case{};  // cut tets by CutCase (index = enum value)
   std::size_t dropped_hits = 0;               // hits that could not be realised
   std::size_t degenerate_hits = 0;            // crossings too close to a vertex or edge, skipped
   std::size_t snapped_vertices = 0;           // vertices put on the crack by snapping
@@ -105,6 +111,10 @@ struct CutStatistics {
   std::size_t unsnapped_vertices = 0;
   // Copies made where the crack through a snapped vertex parted its tets.
   std::size_t parted_vertices = 0;
+  // Deferred: crossings of the tip's path taken on an edge of their face (its crack front
+  // closed there), and the edges given them back because a tet could not split with them.
+  std::size_t edge_snapped_hits = 0;
+  std::size_t unsnapped_edges = 0;
   // Faces given a point where the crack ends: it met them at one cut edge, and no path of the
   // blade's crossed them (see Cutter::EndCracksOnFaces).
   std::size_t ended_cracks = 0;
@@ -204,6 +214,9 @@ class Cutter {
     // Both ends snapped on the same side: the edge lies along the crack and is not cut (kept
     // so that the crossing comes back if either end is unsnapped).
     bool along = false;
+    // Deferred: the crack's front crosses the edge here (a face crossing snapped to it): one
+    // vertex (near_low == near_high) that every tet at the edge splits at, not parted.
+    bool closed = false;
   };
   struct FaceHit {
     Eigen::Vector3d barycentric;  // on the face's vertices in increasing id order
@@ -322,6 +335,19 @@ class Cutter {
   // Takes `v` off the crack: its hits are as they were found (those through it skipped), and
   // it does not snap again. Not once committed.
   void Unsnap(mesh::VertexId v);
+  // Deferred: the face crossing `key` (barycentric on its vertices in key order) taken on the
+  // edge it lies within snap_fraction_ of, if it lies so near one edge, which has no hit but
+  // another closed one, and not near a vertex. Returns the edge's key if so.
+  std::optional<EdgeKey> SnapToEdge(const FaceKey& key, const Eigen::Vector3d& barycentric);
+  // Deferred: the closed hit `key` is dropped (with its vertex, if made), its face crossings
+  // given back as face hits.
+  void UnsnapEdge(EdgeKey key);
+  // Deferred: the split of a tet with closed cuts, or with snapping one no case covers: two
+  // tets at one closed cut alone, a complete cut if it is cut through, else a cone from a point
+  // made on its crack (the middle of its front: closed cuts and face points) or else from its
+  // middle, the vertex added to `apexes`. Empty if none tiles.
+  TetSplit SplitAsCone(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                       const std::vector<FacePoint>& faces, std::vector<mesh::VertexId>* apexes);
   // Progressive: the snapped corners that `cuts` (of the tet `corners`, split for good) are
   // pinned at are committed: they stay on the crack.
   void Commit(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts);
@@ -364,6 +390,10 @@ class Cutter {
                                   const BladePose* pose = nullptr,
                                   const ClosedVertexMaker& closed_vertex = {});
   std::vector<FacePoint> FacePointsOf(const mesh::TetVertices& corners) const;
+  // Deferred: whether the face hit `hit` on `key` lies within snap_fraction_ (its other two
+  // barycentrics) of a snapped vertex: the crack's front passes through the vertex, and the
+  // point is not made (it is again if the vertex is unsnapped).
+  bool AtSnappedVertex(const FaceKey& key, const FaceHit& hit) const;
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& from,
                             const Eigen::Vector4d& weights);
   // Moves a vertex the cut made to the place `weights` give on `from` (rest and current).
@@ -394,6 +424,12 @@ class Cutter {
   absl::flat_hash_map<std::uint32_t, Eigen::Vector3d> positions_at_previous_;
   absl::flat_hash_map<EdgeKey, EdgeHit> edge_hits_;
   absl::flat_hash_map<FaceKey, FaceHit, FaceKeyHash> face_hits_;
+  // Deferred: the face crossings each closed hit stands for (see SnapToEdge).
+  absl::flat_hash_map<EdgeKey, std::vector<std::pair<FaceKey, Eigen::Vector3d>>>
+      edge_snapped_faces_;
+  // Deferred: the closed hits a face crossing of the pose being recorded was snapped to (the
+  // blade crossing such an edge in the same pose passed it by less than the fraction).
+  absl::flat_hash_set<EdgeKey> closed_this_pose_;
   // Groups of unsplit tets with hits, joined through shared hits: a union-find forest over the
   // tets (parent links) and the members of each root.
   absl::flat_hash_map<mesh::TetId, mesh::TetId> group_of_;

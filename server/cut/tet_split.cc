@@ -473,6 +473,18 @@ TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut
   return split;
 }
 
+TetSplit SplitAtClosedCut(const mesh::TetVertices& corners, const EdgeCut& cut) {
+  assert(cut.near_a == cut.near_b);
+  TetSplit split;
+  split.cut_case = CutCase::kSplitEdge;
+  for (const int replaced : {cut.corner_a, cut.corner_b}) {
+    mesh::TetVertices piece = corners;
+    piece[replaced] = cut.near_a;
+    split.tets.push_back(piece);
+  }
+  return split;
+}
+
 void LeaveOutCollapsedTets(TetSplit* split) {
   std::size_t kept = 0;
   for (std::size_t k = 0; k < split->tets.size(); ++k) {

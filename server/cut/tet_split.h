@@ -38,7 +38,8 @@ enum class CutCase {
   kCrackOneEdge,     // case iii: one cut edge, the crack ending inside (6 tets)
   kCrackTwoEdges,    // case iv: two cut edges sharing a corner, the crack ending inside (8 tets)
   kCrackThreeEdges,  // case v: three cut edges in a path, the crack ending inside (9-10 tets)
-  kStar,             // progressive only: a cone from a point inside over the tet's faces
+  kStar,             // a cone from a point inside over the tet's faces (see SplitAsStar)
+  kSplitEdge,        // deferred, snapped: one closed cut alone, two tets (SplitAtClosedCut)
 };
 
 // Where the blade's tip path crossed a face: one vertex, the base of the crack.
@@ -83,6 +84,11 @@ TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<Edg
 TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
                      const std::vector<FacePoint>& face_points, mesh::VertexId apex,
                      const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
+
+// A tet whose only cut is closed (`cut.near_a == cut.near_b`: the crack's front crosses the
+// edge, see Cutter): two tets, each with one corner of the edge replaced by the cut's vertex, so
+// the faces at the edge are two triangles from their third corner, as SplitAsStar makes them.
+TetSplit SplitAtClosedCut(const mesh::TetVertices& corners, const EdgeCut& cut);
 
 // Leaves out the pieces with a repeated vertex: where a cut point is a corner itself (a
 // snapped crossing, see Cutter), the pieces between them collapse, and the others tile the
