@@ -1028,17 +1028,17 @@ std::vector<FacePoint> Cutter::FacePointsOf(const mesh::TetVertices& corners) co
   for (int k = 0; k < 4; ++k) {
     const auto& face = mesh::kTetFaces[k];
     const auto it = face_hits_.find(MakeFaceKey(corners, face));
-    if (it != face_hits_.end() && !AtSnappedVertex(it->first, it->second)) {
+    if (it != face_hits_.end() && !AtSnappedVertex(it->first, it->second.barycentric)) {
       points.push_back({k, it->second.vertex});
     }
   }
   return points;
 }
 
-bool Cutter::AtSnappedVertex(const FaceKey& key, const FaceHit& hit) const {
+bool Cutter::AtSnappedVertex(const FaceKey& key, const Eigen::Vector3d& barycentric) const {
   int nearest = 0;
-  const double most = hit.barycentric.maxCoeff(&nearest);
-  const double middle = hit.barycentric.sum() - most - hit.barycentric.minCoeff();
+  const double most = barycentric.maxCoeff(&nearest);
+  const double middle = barycentric.sum() - most - barycentric.minCoeff();
   return middle < snap_fraction_ && snapped_.contains(key[nearest]);
 }
 
@@ -1056,7 +1056,7 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       for (const auto& face : mesh::kTetFaces) {
         const auto it = face_hits_.find(MakeFaceKey(v, face));
         if (it != face_hits_.end() && it->second.vertex == kNoVertex &&
-            !AtSnappedVertex(it->first, it->second)) {
+            !AtSnappedVertex(it->first, it->second.barycentric)) {
           const FaceKey& k = it->first;
           it->second.vertex = MakeVertex(
               {k[0], k[1], k[2], k[0]},
@@ -1327,6 +1327,12 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         };
         Eigen::Vector3d barycentric;
         if (!cut_edge(true)) continue;
+        // Beside a snapped vertex the crack's front passes through the vertex: no point (unless
+        // one was made, and a tet on the other side uses it).
+        if (hit != face_hits_.end() && hit->second.vertex == kNoVertex &&
+            AtSnappedVertex(key, hit->second.barycentric)) {
+          continue;
+        }
         if (hit != face_hits_.end()) {
           if (hit->second.vertex == kNoVertex) {
             const Eigen::Vector3d& b = hit->second.barycentric;
@@ -1403,9 +1409,10 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       });
       // Fallbacks: a cone from a point inside the tet (weights on its corners).
       const auto cone_from = [&](const Eigen::Vector4d& apex) {
-        split = SplitAsStar(corners, cuts, used,
-                            temporary_point(InsidePlace(t), corners, apex, false), rest);
-        KeepIfItTiles(*mesh_, corners, &split);
+        const VertexId point = temporary_point(InsidePlace(t), corners, apex, false);
+        split = SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
+          return SplitAsStar(corners, kept, used, point, rest);
+        });
         inputs.apex = Apex::kMiddle;
       };
       if (split.tets.empty() && !used.empty()) {
@@ -1432,6 +1439,11 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       if (split.tets.empty() && inside && !opens && !cuts.empty()) {
         // Every cut closed (the blade on the tet's edges): nothing opens here, but the tet
         // must meet its neighbours' faces at those points; a cone from its middle does.
+        cone_from(Eigen::Vector4d::Constant(0.25));
+      }
+      if (split.tets.empty() && !inside && snap_fraction_ > 0) {
+        // Snapped, a tet the blade has left that no case covers (the crack's front through a
+        // snapped corner, say): a cone from its middle, where the crack ends.
         cone_from(Eigen::Vector4d::Constant(0.25));
       }
       if (split.tets.empty()) {

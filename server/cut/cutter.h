@@ -390,10 +390,10 @@ class Cutter {
                                   const BladePose* pose = nullptr,
                                   const ClosedVertexMaker& closed_vertex = {});
   std::vector<FacePoint> FacePointsOf(const mesh::TetVertices& corners) const;
-  // Deferred: whether the face hit `hit` on `key` lies within snap_fraction_ (its other two
-  // barycentrics) of a snapped vertex: the crack's front passes through the vertex, and the
-  // point is not made (it is again if the vertex is unsnapped).
-  bool AtSnappedVertex(const FaceKey& key, const FaceHit& hit) const;
+  // Whether a face crossing of `key` at `barycentric` (on its vertices in key order) lies within
+  // snap_fraction_ (its other two barycentrics) of a snapped vertex: the crack's front passes
+  // through the vertex, and the point is not made (it is again if the vertex is unsnapped).
+  bool AtSnappedVertex(const FaceKey& key, const Eigen::Vector3d& barycentric) const;
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& from,
                             const Eigen::Vector4d& weights);
   // Moves a vertex the cut made to the place `weights` give on `from` (rest and current).
