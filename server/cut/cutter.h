@@ -87,9 +87,10 @@ inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 // the fraction (barycentric) of one of its edges, and not of a vertex, the crack's front is
 // taken to cross that edge instead (a closed cut: the edge is split at one vertex, not parted;
 // every tet at it splits there), and the face point, which would make slivers along the edge,
-// is not made. A tet that cannot be split with it takes the face points back. A face crossing
-// as near a snapped vertex makes no point either (the front passes through the vertex), and a
-// tet no case covers is split as a cone (see Cutter::SplitAsCone). 0: no snapping.
+// is not made. A tet that cannot be split with it takes the face points back. In either mode a
+// face crossing as near a snapped vertex makes no point (the front passes through the vertex),
+// and a tet no case covers is split as a cone (deferred: Cutter::SplitAsCone; progressive: a
+// tet the blade has left, from its middle). 0: no snapping.
 inline constexpr double kDefaultSnapFraction = 0;
 
 // The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
@@ -336,8 +337,9 @@ class Cutter {
   // it does not snap again. Not once committed.
   void Unsnap(mesh::VertexId v);
   // Deferred: the face crossing `key` (barycentric on its vertices in key order) taken on the
-  // edge it lies within snap_fraction_ of, if it lies so near one edge, which has no hit but
-  // another closed one, and not near a vertex. Returns the edge's key if so.
+  // edge it lies within snap_fraction_ of, if it lies so near one edge (whose only hit, if
+  // any, is closed, and whose ends are not snapped) and not near a vertex. Returns the edge's
+  // key if so.
   std::optional<EdgeKey> SnapToEdge(const FaceKey& key, const Eigen::Vector3d& barycentric);
   // Deferred: the closed hit `key` is dropped (with its vertex, if made), its face crossings
   // given back as face hits.
