@@ -36,6 +36,12 @@ std::uint64_t MakeEdgeKey(VertexId a, VertexId b) {
   return (std::uint64_t{Index(a)} << 32) | Index(b);
 }
 
+// The middle one of three barycentric coordinates: under a snap fraction, with the least, the
+// point lies that near a vertex (the largest's).
+double MiddleCoefficient(const Eigen::Vector3d& barycentric) {
+  return barycentric.sum() - barycentric.minCoeff() - barycentric.maxCoeff();
+}
+
 // The two vertices of an edge key, lower id first.
 std::array<VertexId, 2> EdgeEnds(std::uint64_t key) {
   return {VertexId(static_cast<std::uint32_t>(key >> 32)),
@@ -359,7 +365,7 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
   std::vector<Crossing> crossings;
   std::vector<EdgeKey> new_edges;
   std::vector<FaceKey> new_faces;
-  closed_this_pose_.clear();
+  absl::flat_hash_set<EdgeKey> closed_now;  // closed hits this pose's face crossings snapped to
   // The grid lists the tets in the cells the swept surface's box covers; keep those whose own
   // box meets it (the blade can only be inside those, too).
   std::vector<TetId> near = grid_.Candidates(low, high);
@@ -408,6 +414,7 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
         ++statistics_.unrealisable_hits;
       } else if (const std::optional<EdgeKey> edge = SnapToEdge(key, crossing->barycentric)) {
         new_edges.push_back(*edge);
+        closed_now.insert(*edge);
       } else {
         face_hits_[key] = {crossing->barycentric};
         new_faces.push_back(key);
@@ -422,7 +429,7 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
   } else {
     normal.normalize();
   }
-  RecordEdgeCrossings(crossings, normal, &new_edges);
+  RecordEdgeCrossings(crossings, normal, closed_now, &new_edges);
   for (const EdgeKey key : new_edges) {
     const std::array<VertexId, 2> ends = EdgeEnds(key);
     if (mode_ == CutMode::kDeferred) {
@@ -442,7 +449,9 @@ std::vector<TetId> Cutter::RecordHits(const BladePose& from, const BladePose& to
 }
 
 void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
-                                 const Eigen::Vector3d& normal, std::vector<EdgeKey>* new_edges) {
+                                 const Eigen::Vector3d& normal,
+                                 const absl::flat_hash_set<EdgeKey>& closed_now,
+                                 std::vector<EdgeKey>* new_edges) {
   if (snap_fraction_ > 0 && normal != Eigen::Vector3d::Zero()) {
     absl::flat_hash_map<VertexId, Eigen::Vector3d> to_snap;
     for (const Crossing& c : crossings) {
@@ -472,7 +481,7 @@ void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
   }
   for (const Crossing& c : crossings) {
     if (const auto hit = edge_hits_.find(c.key); hit != edge_hits_.end() && hit->second.closed) {
-      if (closed_this_pose_.contains(c.key)) {
+      if (closed_now.contains(c.key)) {
         // The tip passed just beyond the edge: the crack's front still crosses it, where the
         // blade did.
         if (c.fraction > kDegenerate && c.fraction < 1 - kDegenerate)
@@ -596,10 +605,11 @@ std::optional<Cutter::EdgeKey> Cutter::SnapToEdge(const FaceKey& key,
                                                   const Eigen::Vector3d& barycentric) {
   if (mode_ != CutMode::kDeferred || snap_fraction_ == 0) return std::nullopt;
   int far = 0;  // the corner opposite the edge it is near
-  const double least = barycentric.minCoeff(&far);
-  const double middle = barycentric.sum() - least - barycentric.maxCoeff();
   // Near a vertex it would cut a short piece off the edge: it stays a face point.
-  if (least >= snap_fraction_ || middle < snap_fraction_) return std::nullopt;
+  if (barycentric.minCoeff(&far) >= snap_fraction_ ||
+      MiddleCoefficient(barycentric) < snap_fraction_) {
+    return std::nullopt;
+  }
   const int low = far == 0 ? 1 : 0, high = far == 2 ? 1 : 2;  // the edge's ends in the key
   const EdgeKey edge = MakeEdgeKey(key[low], key[high]);
   const auto hit = edge_hits_.find(edge);
@@ -613,7 +623,6 @@ std::optional<Cutter::EdgeKey> Cutter::SnapToEdge(const FaceKey& key,
                         .closed = true};
   }
   edge_snapped_faces_[edge].emplace_back(key, barycentric);
-  closed_this_pose_.insert(edge);
   ++statistics_.edge_snapped_hits;
   return edge;
 }
@@ -1037,9 +1046,8 @@ std::vector<FacePoint> Cutter::FacePointsOf(const mesh::TetVertices& corners) co
 
 bool Cutter::AtSnappedVertex(const FaceKey& key, const Eigen::Vector3d& barycentric) const {
   int nearest = 0;
-  const double most = barycentric.maxCoeff(&nearest);
-  const double middle = barycentric.sum() - most - barycentric.minCoeff();
-  return middle < snap_fraction_ && snapped_.contains(key[nearest]);
+  barycentric.maxCoeff(&nearest);
+  return MiddleCoefficient(barycentric) < snap_fraction_ && snapped_.contains(key[nearest]);
 }
 
 TetId Cutter::SourceTet(TetId t) const {
@@ -1079,16 +1087,16 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
         return c.near_a == c.near_b && !IsPinned(corners, c);
       });
       TetSplit split =
-          closed ? SplitAsCone(corners, cuts, faces, &apexes)
+          closed ? TetSplit{}
                  : SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
                      if (faces.empty()) return SplitCompletelyCutTet(corners, kept);
                      if (faces.size() == 2)
                        return SplitCrackedTet(corners, kept, {faces[0], faces[1]}, rest);
                      return TetSplit{};
                    });
-      // Snapping leaves patterns no case covers beside snapped vertices (the crack's front
-      // through one): such a tet is split as a cone.
-      if (split.tets.empty() && !closed && snap_fraction_ > 0) {
+      // Closed cuts (only made when snapping), and patterns no case covers that snapping
+      // leaves beside snapped vertices (the crack's front through one): a cone.
+      if (split.tets.empty() && snap_fraction_ > 0) {
         split = SplitAsCone(corners, cuts, faces, &apexes);
       }
       if (split.tets.empty()) {
@@ -1131,22 +1139,24 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
     for (const VertexId apex : apexes) (void)mesh_->RemoveVertex(apex);
     // A tet that cannot be split with snapped points is tried without them: its snapped
     // vertices give their hits back as they were found, its closed cuts their face points.
-    const std::size_t unsnapped_before =
-        statistics_.unsnapped_vertices + statistics_.unsnapped_edges;
+    bool gave_back = false;
     for (const TetId t : failed) {
       const mesh::TetVertices corners = mesh_->tet(t);
       for (const VertexId v : corners) {
-        if (snapped_.contains(v)) Unsnap(v);
+        if (!snapped_.contains(v)) continue;
+        Unsnap(v);
+        gave_back = true;
       }
       for (const auto& [i, j] : mesh::kTetEdges) {
         const EdgeKey key = MakeEdgeKey(corners[i], corners[j]);
-        if (const auto hit = edge_hits_.find(key); hit != edge_hits_.end() && hit->second.closed) {
-          UnsnapEdge(key);
-          ++statistics_.unsnapped_edges;
-        }
+        const auto hit = edge_hits_.find(key);
+        if (hit == edge_hits_.end() || !hit->second.closed) continue;
+        UnsnapEdge(key);
+        ++statistics_.unsnapped_edges;
+        gave_back = true;
       }
     }
-    if (statistics_.unsnapped_vertices + statistics_.unsnapped_edges > unsnapped_before) continue;
+    if (gave_back) continue;
     if (EndCracksOnFaces(failed)) continue;
     // Drop the hits of the tets that cannot be split, with the vertices made for them (no
     // tet uses those yet), and look at the group again.
@@ -1155,8 +1165,10 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       for (const auto& [i, j] : mesh::kTetEdges) {
         const auto it = edge_hits_.find(MakeEdgeKey(v[i], v[j]));
         if (it == edge_hits_.end()) continue;
-        for (const VertexId made : {it->second.near_low, it->second.near_high}) {
-          if (made != kNoVertex && mesh_->IsAlive(made)) (void)mesh_->RemoveVertex(made);
+        const EdgeHit& hit = it->second;
+        if (hit.near_low != kNoVertex) (void)mesh_->RemoveVertex(hit.near_low);
+        if (hit.near_high != kNoVertex && hit.near_high != hit.near_low) {
+          (void)mesh_->RemoveVertex(hit.near_high);  // a closed hit has one vertex
         }
         edge_hits_.erase(it);
         ++statistics_.dropped_hits;

@@ -323,8 +323,11 @@ class Cutter {
   };
   // Records this pose's edge crossings, snapping them where snap_fraction_ says (see
   // kDefaultSnapFraction), and adds the keys of the new hits to `new_edges`.
-  // `normal`: the swept surface's, unit (zero: nothing snaps).
+  // `normal`: the swept surface's, unit (zero: nothing snaps). `closed_now`: the closed hits
+  // this pose's face crossings were snapped to; the blade crossing one of them in the same
+  // pose passed it by less than the fraction, and it stays closed (else it opens).
   void RecordEdgeCrossings(const std::vector<Crossing>& crossings, const Eigen::Vector3d& normal,
+                           const absl::flat_hash_set<EdgeKey>& closed_now,
                            std::vector<EdgeKey>* new_edges);
   // Puts each vertex on the crack, to be parted from the side its direction points to: the hits
   // waiting at it are taken at it and its tets join one group. Not a vertex with a hit waiting
@@ -429,9 +432,6 @@ class Cutter {
   // Deferred: the face crossings each closed hit stands for (see SnapToEdge).
   absl::flat_hash_map<EdgeKey, std::vector<std::pair<FaceKey, Eigen::Vector3d>>>
       edge_snapped_faces_;
-  // Deferred: the closed hits a face crossing of the pose being recorded was snapped to (the
-  // blade crossing such an edge in the same pose passed it by less than the fraction).
-  absl::flat_hash_set<EdgeKey> closed_this_pose_;
   // Groups of unsplit tets with hits, joined through shared hits: a union-find forest over the
   // tets (parent links) and the members of each root.
   absl::flat_hash_map<mesh::TetId, mesh::TetId> group_of_;

@@ -334,16 +334,7 @@ TEST(Snapping, ATipPathNearEdgesEndsTheCrackOnThem) {
   const double area = BoundaryArea(Bar());
   const SnappedBar plain = CutBarAlongY(0, 0.035, 0.0107, 0.03);
   const SnappedBar snapped = CutBarAlongY(0.2, 0.035, 0.0107, 0.03);
-  const auto slivers = [](const TetMesh& m) {
-    std::size_t count = 0;
-    for (const mesh::TetId t : m.tets()) {
-      const mesh::TetVertices& v = m.tet(t);
-      count += geometry::MeasureTet(m.rest_position(v[0]), m.rest_position(v[1]),
-                                    m.rest_position(v[2]), m.rest_position(v[3]))
-                   .min_dihedral_deg < 5;
-    }
-    return count;
-  };
+  const auto slivers = [](const TetMesh& m) { return mesh::MeasureMeshQuality(m).slivers; };
   const CutStatistics& s = snapped.statistics;
   std::printf(
       "tip path near edges, deferred: snapped %zu cut, %zu new, %zu slivers, %zu crossings on "
