@@ -210,6 +210,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_parted_vertices(static_cast<std::uint32_t>(s.parted_vertices));
   report.set_edge_snapped_hits(static_cast<std::uint32_t>(s.edge_snapped_hits));
   report.set_unsnapped_edges(static_cast<std::uint32_t>(s.unsnapped_edges));
+  report.set_opened_edges(static_cast<std::uint32_t>(s.opened_edges));
   report.set_split_edge_tets(static_cast<std::uint32_t>(
       s.tets_by_case[static_cast<std::size_t>(cut::CutCase::kSplitEdge)]));
   double min_angle = 0;

@@ -483,14 +483,19 @@ void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
     if (const auto hit = edge_hits_.find(c.key); hit != edge_hits_.end() && hit->second.closed) {
       if (closed_now.contains(c.key)) {
         // The tip passed just beyond the edge: the crack's front still crosses it, where the
-        // blade did.
-        if (c.fraction > kDegenerate && c.fraction < 1 - kDegenerate)
+        // blade did (unless its vertex is made).
+        if (c.fraction > kDegenerate && c.fraction < 1 - kDegenerate &&
+            hit->second.near_low == kNoVertex) {
           hit->second.fraction = c.fraction;
+        }
         continue;
       }
+      // Progressive: a tet split for good at it (frozen) keeps the front there.
+      if (ClosedCutSettled(hit->second)) continue;
       // The crack's front was taken to cross the edge; now the blade does, deeper: the
       // crossing is used as found, and the tip's crossings beside the edge are face points.
       UnsnapEdge(c.key);
+      ++statistics_.opened_edges;
     }
     if (const auto hit = edge_hits_.find(c.key); hit != edge_hits_.end()) {
       hit->second.fraction = c.fraction;  // cut at its snapped vertex, and now crossed
@@ -603,7 +608,7 @@ void Cutter::MarkEdgeBetweenSnapped(EdgeKey key, VertexId a, VertexId b) {
 
 std::optional<Cutter::EdgeKey> Cutter::SnapToEdge(const FaceKey& key,
                                                   const Eigen::Vector3d& barycentric) {
-  if (mode_ != CutMode::kDeferred || snap_fraction_ == 0) return std::nullopt;
+  if (snap_fraction_ == 0) return std::nullopt;
   int far = 0;  // the corner opposite the edge it is near
   // Near a vertex it would cut a short piece off the edge: it stays a face point.
   if (barycentric.minCoeff(&far) >= snap_fraction_ ||
@@ -613,8 +618,9 @@ std::optional<Cutter::EdgeKey> Cutter::SnapToEdge(const FaceKey& key,
   const int low = far == 0 ? 1 : 0, high = far == 2 ? 1 : 2;  // the edge's ends in the key
   const EdgeKey edge = MakeEdgeKey(key[low], key[high]);
   const auto hit = edge_hits_.find(edge);
+  const std::array<VertexId, 2> ends = {key[low], key[high]};
   if ((hit != edge_hits_.end() && !hit->second.closed) || snapped_.contains(key[low]) ||
-      snapped_.contains(key[high])) {
+      snapped_.contains(key[high]) || !Realisable(ends)) {
     return std::nullopt;
   }
   if (hit == edge_hits_.end()) {
@@ -627,10 +633,25 @@ std::optional<Cutter::EdgeKey> Cutter::SnapToEdge(const FaceKey& key,
   return edge;
 }
 
+bool Cutter::ClosedCutSettled(const EdgeHit& hit) const {
+  if (hit.near_low == kNoVertex) return false;
+  const auto& around = mesh_->TetsAround(hit.near_low);
+  return std::any_of(around.begin(), around.end(), [&](TetId t) { return !owner_.contains(t); });
+}
+
 void Cutter::UnsnapEdge(EdgeKey key) {
   const auto hit = edge_hits_.find(key);
   assert(hit != edge_hits_.end() && hit->second.closed);
-  if (hit->second.near_low != kNoVertex) (void)mesh_->RemoveVertex(hit->second.near_low);
+  const VertexId made = hit->second.near_low;
+  if (made != kNoVertex && !mesh_->RemoveVertex(made).ok()) {
+    // Progressive: temporary pieces use it until they are made anew; it goes with them.
+    const std::array<VertexId, 2> ends = EdgeEnds(key);
+    const double fraction = hit->second.fraction;
+    temporary_points_.try_emplace(
+        FaceKey{ends[0], ends[1], ends[1]},
+        TemporaryPoint{
+            .vertex = made, .weights = {1 - fraction, fraction, 0, 0}, .on_blade = false});
+  }
   edge_hits_.erase(hit);
   for (const auto& [face, barycentric] : edge_snapped_faces_[key]) {
     face_hits_.try_emplace(face, FaceHit{barycentric});
@@ -639,7 +660,7 @@ void Cutter::UnsnapEdge(EdgeKey key) {
 }
 
 TetSplit Cutter::SplitAsCone(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
-                             const std::vector<FacePoint>& faces, std::vector<VertexId>* apexes) {
+                             const std::vector<FacePoint>& faces, const ApexMaker& apex_at) {
   if (cuts.size() == 1 && faces.empty() && cuts[0].near_a == cuts[0].near_b &&
       !IsPinned(corners, cuts[0])) {
     TetSplit split = SplitAtClosedCut(corners, cuts[0]);
@@ -683,15 +704,11 @@ TetSplit Cutter::SplitAsCone(const mesh::TetVertices& corners, const std::vector
   if (cracked && points > 1) weights.insert(weights.begin(), front / points);
   const auto rest = [&](VertexId v) { return mesh_->rest_position(v); };
   for (const Eigen::Vector4d& w : weights) {
-    const VertexId apex = MakeVertex(corners, w);
+    const VertexId apex = apex_at(w);
     TetSplit split = SplitThatTiles(*mesh_, corners, cuts, [&](const std::vector<EdgeCut>& kept) {
       return SplitAsStar(corners, kept, faces, apex, rest);
     });
-    if (!split.tets.empty()) {
-      apexes->push_back(apex);
-      return split;
-    }
-    (void)mesh_->RemoveVertex(apex);
+    if (!split.tets.empty()) return split;
   }
   return {};
 }
@@ -1007,8 +1024,10 @@ std::vector<EdgeCut> Cutter::EdgeCutsOf(const mesh::TetVertices& corners,
     }
     const Eigen::Vector4d weights(1 - hit.fraction, hit.fraction, 0, 0);
     if (hit.closed) {  // the crack's front crosses the edge: one vertex
-      if (hit.near_low == kNoVertex)
+      if (hit.near_low == kNoVertex) {
         hit.near_low = hit.near_high = MakeVertex({lo, hi, lo, lo}, weights);
+        if (given != nullptr) given->push_back(it->first);
+      }
       cuts.push_back({i_low ? i : j, i_low ? j : i, hit.near_low, hit.near_low});
       continue;
     }
@@ -1097,7 +1116,9 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
       // Closed cuts (only made when snapping), and patterns no case covers that snapping
       // leaves beside snapped vertices (the crack's front through one): a cone.
       if (split.tets.empty() && snap_fraction_ > 0) {
-        split = SplitAsCone(corners, cuts, faces, &apexes);
+        split = SplitAsCone(corners, cuts, faces, [&](const Eigen::Vector4d& weights) {
+          return apexes.emplace_back(MakeVertex(corners, weights));
+        });
       }
       if (split.tets.empty()) {
         failed.push_back(t);
@@ -1134,6 +1155,9 @@ void Cutter::SplitGroup(std::vector<TetId> group) {
         }
       }
       PartSnappedVertices(std::move(snapped));
+      for (const VertexId apex : apexes) {  // a cone's apex tried first, if another was kept
+        if (mesh_->TetsAround(apex).empty()) (void)mesh_->RemoveVertex(apex);
+      }
       break;
     }
     for (const VertexId apex : apexes) (void)mesh_->RemoveVertex(apex);
@@ -1194,7 +1218,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
   // Every tet at a hit is open, as for any hit, while its snapped vertex waits (a tet whose cuts
   // are all pinned is closed as soon as the blade is not in it, and the blade may come back).
   for (const auto& [key, hit] : edge_hits_) {
-    if (hit.at == kNoVertex && !hit.along) continue;
+    if (hit.at == kNoVertex && !hit.along && !hit.closed) continue;
     const std::array<VertexId, 2> ends = EdgeEnds(key);
     for (const TetId t : TetsWith(ends)) open_.try_emplace(t);
   }
@@ -1278,43 +1302,75 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
     std::vector<Plan> plans;
     std::vector<TetId> failed_final;
     bool failed_temporary = false;
-    // Where the blade edge crosses each face, found once per face so both its tets agree.
+    // Where the blade edge crosses each face of each open tet, found once per face so both its
+    // tets agree, and whether the blade is in the tet.
     absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>
         crossing_of;
+    struct BladeIn {
+      std::array<std::optional<geometry::SegmentTriangleCrossing>, 4> crossings;
+      bool inside = false;
+    };
+    absl::flat_hash_map<TetId, BladeIn> blade_in;
+    for (const TetId t : tets) {
+      if (pose == nullptr) break;
+      const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
+      BladeIn& in = blade_in[t];
+      for (int k = 0; k < 4; ++k) {
+        const FaceKey key = MakeFaceKey(corners, mesh::kTetFaces[k]);
+        auto [it, fresh] = crossing_of.try_emplace(key);
+        if (fresh) {
+          it->second = geometry::IntersectSegmentTriangle(pose->tip, pose->heel, current(key[0]),
+                                                          current(key[1]), current(key[2]));
+        }
+        in.crossings[k] = it->second;
+        in.inside = in.inside || in.crossings[k].has_value();
+      }
+      std::array<Eigen::Vector3d, 4> x;
+      for (int k = 0; k < 4; ++k) x[k] = current(corners[k]);
+      in.inside = in.inside || geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->tip) ||
+                  geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->heel);
+    }
+    // A snapped closed cut (the crack's front on an edge) opens if the blade crosses the edge
+    // later, so no tet at it splits for good while the blade is in one of them: they wait, in
+    // temporary subdivisions, and so do the tets at closed cuts of waiting tets.
+    absl::flat_hash_set<TetId> waiting;
+    for (const auto& [t, in] : blade_in) {
+      if (in.inside) waiting.insert(t);
+    }
+    for (bool grew = !waiting.empty(); grew;) {
+      grew = false;
+      for (const auto& [key, hit] : edge_hits_) {
+        if (!hit.closed) continue;
+        const std::vector<TetId> at = TetsWith(EdgeEnds(key));
+        if (std::none_of(at.begin(), at.end(), [&](TetId t) { return waiting.contains(t); })) {
+          continue;
+        }
+        for (const TetId t : at) grew |= open_.contains(t) && waiting.insert(t).second;
+      }
+    }
     for (const TetId t : tets) {
       const mesh::TetVertices corners = mesh_->tet_even_if_removed(t);
       const auto weights_of = [&](const Eigen::Vector3d& p) {  // barycentric, now
         return TetBarycentric(current(corners[0]), current(corners[1]), current(corners[2]),
                               current(corners[3]), p);
       };
-      std::array<std::optional<geometry::SegmentTriangleCrossing>, 4> crossings;
-      bool inside = false;
-      if (pose != nullptr) {
-        for (int k = 0; k < 4; ++k) {
-          const auto& f = mesh::kTetFaces[k];
-          const FaceKey key = MakeFaceKey(corners, f);
-          auto [it, fresh] = crossing_of.try_emplace(key);
-          if (fresh) {
-            it->second = geometry::IntersectSegmentTriangle(pose->tip, pose->heel, current(key[0]),
-                                                            current(key[1]), current(key[2]));
-          }
-          crossings[k] = it->second;
-          inside = inside || crossings[k].has_value();
-        }
-        std::array<Eigen::Vector3d, 4> x;
-        for (int k = 0; k < 4; ++k) x[k] = current(corners[k]);
-        inside = inside || geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->tip) ||
-                 geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose->heel);
-      }
-      // A closed cut's one vertex is a temporary point on the blade; the tet holds the blade.
+      const BladeIn in = pose != nullptr ? blade_in.at(t) : BladeIn{};
+      const auto& crossings = in.crossings;
+      bool inside = in.inside;
+      // A closed cut's one vertex is a temporary point on the blade; the tet holds the blade
+      // (but not at a snapped one: the crack's front stays there when the blade has gone).
       const std::vector<EdgeCut> cuts = EdgeCutsOf(corners, &edges_given, pose, temporary_point);
       const bool opens = std::any_of(cuts.begin(), cuts.end(),
                                      [](const EdgeCut& c) { return c.near_a != c.near_b; });
       const auto pinned = [&](const EdgeCut& c) { return IsPinned(corners, c); };
       const bool all_pinned = std::all_of(cuts.begin(), cuts.end(), pinned);
+      const auto snapped_closed = [&](const EdgeCut& c) {
+        return edge_hits_.at(MakeEdgeKey(corners[c.corner_a], corners[c.corner_b])).closed;
+      };
       inside = inside || std::any_of(cuts.begin(), cuts.end(), [&](const EdgeCut& c) {
-                 return c.near_a == c.near_b && !pinned(c);
+                 return c.near_a == c.near_b && !pinned(c) && !snapped_closed(c);
                });
+      const bool temporary = inside || waiting.contains(t);
       // Face points that can open: on a face with a cut edge (a permanent one first). A
       // temporary one needs an edge that opens: where the face's only cuts are pinned at a
       // snapped corner, the crack passes through the corner and the blade beside it opens
@@ -1389,7 +1445,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       if (used.empty() && all_pinned) {
         // Nothing can open (no cut, or all at snapped corners): the tet stays, whole again if
         // it stood in pieces.
-        Plan stays{.tet = t, .temporary = inside, .table_case = table_case};
+        Plan stays{.tet = t, .temporary = temporary, .table_case = table_case};
         if (!open_.at(t).pieces.empty()) stays.split.tets = {corners};
         plans.push_back(std::move(stays));
         continue;
@@ -1397,10 +1453,15 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
       using Apex = SplitInputs::Apex;
       SplitInputs inputs{cuts, used, tip_inside && !cuts.empty() ? Apex::kTip : Apex::kNone};
       if (const OpenTet& open = open_.at(t);
-          inside && !open.pieces.empty() && open.inputs == inputs) {
+          temporary && !open.pieces.empty() && open.inputs == inputs) {
         // Only the blade moved: the same pieces, their points moved, unless one would now be
         // inverted (then they are chosen anew).
-        if (inputs.apex == Apex::kTip) temporary_point(InsidePlace(t), corners, tip_weights);
+        if (inputs.apex == Apex::kTip) {
+          temporary_point(InsidePlace(t), corners, tip_weights);
+        } else if (const auto apex = temporary_points_.find(InsidePlace(t));
+                   apex != temporary_points_.end()) {
+          points.insert(*apex);  // a cone's, where it was
+        }
         Plan moved{.tet = t, .temporary = true, .table_case = table_case, .moved = true};
         for (const TetId piece : open.pieces) moved.split.tets.push_back(mesh_->tet(piece));
         if (std::all_of(
@@ -1454,9 +1515,12 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         cone_from(Eigen::Vector4d::Constant(0.25));
       }
       if (split.tets.empty() && !inside && snap_fraction_ > 0) {
-        // Snapped, a tet the blade has left that no case covers (the crack's front through a
-        // snapped corner, say): a cone from its middle, where the crack ends.
-        cone_from(Eigen::Vector4d::Constant(0.25));
+        // Snapped, a tet the blade is not in with a closed cut, or that no case covers (the
+        // crack's front through a snapped corner, say): see SplitAsCone.
+        split = SplitAsCone(corners, cuts, used, [&](const Eigen::Vector4d& apex) {
+          inputs.apex = Apex::kMiddle;
+          return temporary_point(InsidePlace(t), corners, apex, false);
+        });
       }
       if (split.tets.empty()) {
         if (inside) {
@@ -1468,7 +1532,7 @@ void Cutter::UpdateOpenTets(const BladePose* pose) {
         continue;
       }
       plans.push_back({.tet = t,
-                       .temporary = inside,
+                       .temporary = temporary,
                        .table_case = table_case,
                        .split = std::move(split),
                        .inputs = std::move(inputs)});
@@ -1823,6 +1887,7 @@ void Cutter::ForgetHitsOf(const mesh::TetVertices& corners) {
     for (const VertexId made : {hit->second.near_low, hit->second.near_high}) {
       if (made != kNoVertex && mesh_->TetsAround(made).empty()) (void)mesh_->RemoveVertex(made);
     }
+    edge_snapped_faces_.erase(hit->first);
     edge_hits_.erase(hit);
   }
   for (const auto& f : mesh::kTetFaces) {

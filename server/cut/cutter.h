@@ -83,14 +83,17 @@ inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 // with it, it is taken off the crack (unsnapped), unless (progressive) a tet has split through
 // it for good: it is then committed, and a crossing on its own side is cut as found. While it
 // waits, the crack does not open at it: progressive cutting lags the blade by up to a tet
-// there. Deferred cutting also snaps to an edge: where the tip's path crosses a face within
-// the fraction (barycentric) of one of its edges, and not of a vertex, the crack's front is
-// taken to cross that edge instead (a closed cut: the edge is split at one vertex, not parted;
-// every tet at it splits there), and the face point, which would make slivers along the edge,
-// is not made. A tet that cannot be split with it takes the face points back. In either mode a
-// face crossing as near a snapped vertex makes no point (the front passes through the vertex),
-// and a tet no case covers is split as a cone (deferred: Cutter::SplitAsCone; progressive: a
-// tet the blade has left, from its middle). 0: no snapping.
+// there. Snapping also takes the crack's front to an edge: where the tip's path crosses a face
+// within the fraction (barycentric) of one of its edges, and not of a vertex, the front is taken
+// to cross that edge instead (a closed cut: the edge is split at one vertex, not parted; every
+// tet at it splits there), and the face point, which would make slivers along the edge, is not
+// made. The blade crossing the edge later (the tip deeper) opens it. Deferred, a tet that cannot
+// be split with it takes the face points back. Progressive: no tet at a closed cut splits for
+// good while the blade is in one of them (they wait in temporary subdivisions, as do the tets at
+// closed cuts of waiting tets), so the edge can still open; a tet at it that cannot split is
+// frozen (see Cutter) with the cut closed, which then stays closed (ClosedCutSettled). A face
+// crossing as near a snapped vertex makes no point (the front passes through the vertex), and a tet
+// the blade is not in that no case covers is split as a cone (Cutter::SplitAsCone). 0: no snapping.
 inline constexpr double kDefaultSnapFraction = 0;
 
 // The paper's Table 1: the cases of a tet the blade is in, by its cut edges, face points,
@@ -112,10 +115,12 @@ struct CutStatistics {
   std::size_t unsnapped_vertices = 0;
   // Copies made where the crack through a snapped vertex parted its tets.
   std::size_t parted_vertices = 0;
-  // Deferred: crossings of the tip's path taken on an edge of their face (its crack front
-  // closed there), and the edges given them back because a tet could not split with them.
+  // Crossings of the tip's path taken on an edge of their face (its crack front closed there),
+  // the edges given them back because a tet could not split with them (deferred), and the
+  // closed cuts opened because the blade crossed their edge at a later pose.
   std::size_t edge_snapped_hits = 0;
   std::size_t unsnapped_edges = 0;
+  std::size_t opened_edges = 0;
   // Faces given a point where the crack ends: it met them at one cut edge, and no path of the
   // blade's crossed them (see Cutter::EndCracksOnFaces).
   std::size_t ended_cracks = 0;
@@ -215,7 +220,7 @@ class Cutter {
     // Both ends snapped on the same side: the edge lies along the crack and is not cut (kept
     // so that the crossing comes back if either end is unsnapped).
     bool along = false;
-    // Deferred: the crack's front crosses the edge here (a face crossing snapped to it): one
+    // The crack's front crosses the edge here (a face crossing snapped to it): one
     // vertex (near_low == near_high) that every tet at the edge splits at, not parted.
     bool closed = false;
   };
@@ -339,20 +344,27 @@ class Cutter {
   // Takes `v` off the crack: its hits are as they were found (those through it skipped), and
   // it does not snap again. Not once committed.
   void Unsnap(mesh::VertexId v);
-  // Deferred: the face crossing `key` (barycentric on its vertices in key order) taken on the
-  // edge it lies within snap_fraction_ of, if it lies so near one edge (whose only hit, if
-  // any, is closed, and whose ends are not snapped) and not near a vertex. Returns the edge's
-  // key if so.
+  // The face crossing `key` (barycentric on its vertices in key order) taken on the edge it
+  // lies within snap_fraction_ of, if it lies so near one edge (whose only hit, if any, is
+  // closed, whose ends are not snapped, and which can be cut: Realisable) and not near a
+  // vertex. Returns the edge's key if so.
   std::optional<EdgeKey> SnapToEdge(const FaceKey& key, const Eigen::Vector3d& barycentric);
-  // Deferred: the closed hit `key` is dropped (with its vertex, if made), its face crossings
-  // given back as face hits.
+  // Whether a tet split for good (progressive: frozen) uses the closed hit's vertex: the
+  // crack's front stays there.
+  bool ClosedCutSettled(const EdgeHit& hit) const;
+  // The closed hit `key` is dropped (with its vertex, if made: progressive, once no temporary
+  // piece uses it), its face crossings given back as face hits: the edge opens (the blade
+  // crossed it), or (deferred) a tet could not split with it.
   void UnsnapEdge(EdgeKey key);
-  // Deferred: the split of a tet with closed cuts, or with snapping one no case covers: two
-  // tets at one closed cut alone, a complete cut if it is cut through, else a cone from a point
-  // made on its crack (the middle of its front: closed cuts and face points) or else from its
-  // middle, the vertex added to `apexes`. Empty if none tiles.
+  // Makes a point inside a tet from weights on its corners (a cone's apex).
+  using ApexMaker = std::function<mesh::VertexId(const Eigen::Vector4d&)>;
+  // The split of a tet the blade is not in with closed cuts, or with snapping one no case
+  // covers: two tets at one closed cut alone, a complete cut if it is cut through, else a cone
+  // from a point `apex_at` makes on its crack (the middle of its front: closed cuts and face
+  // points, which must be hits) or else from its middle. Empty if none tiles (the points made
+  // are the caller's to take back).
   TetSplit SplitAsCone(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
-                       const std::vector<FacePoint>& faces, std::vector<mesh::VertexId>* apexes);
+                       const std::vector<FacePoint>& faces, const ApexMaker& apex_at);
   // Progressive: the snapped corners that `cuts` (of the tet `corners`, split for good) are
   // pinned at are committed: they stay on the crack.
   void Commit(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts);
@@ -429,7 +441,7 @@ class Cutter {
   absl::flat_hash_map<std::uint32_t, Eigen::Vector3d> positions_at_previous_;
   absl::flat_hash_map<EdgeKey, EdgeHit> edge_hits_;
   absl::flat_hash_map<FaceKey, FaceHit, FaceKeyHash> face_hits_;
-  // Deferred: the face crossings each closed hit stands for (see SnapToEdge).
+  // The face crossings each closed hit stands for (see SnapToEdge).
   absl::flat_hash_map<EdgeKey, std::vector<std::pair<FaceKey, Eigen::Vector3d>>>
       edge_snapped_faces_;
   // Groups of unsplit tets with hits, joined through shared hits: a union-find forest over the

@@ -39,7 +39,7 @@ enum class CutCase {
   kCrackTwoEdges,    // case iv: two cut edges sharing a corner, the crack ending inside (8 tets)
   kCrackThreeEdges,  // case v: three cut edges in a path, the crack ending inside (9-10 tets)
   kStar,             // a cone from a point inside over the tet's faces (see SplitAsStar)
-  kSplitEdge,        // deferred, snapped: one closed cut alone, two tets (SplitAtClosedCut)
+  kSplitEdge,        // snapped: one closed cut alone, two tets (SplitAtClosedCut)
 };
 
 // Where the blade's tip path crossed a face: one vertex, the base of the crack.

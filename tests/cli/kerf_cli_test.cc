@@ -524,19 +524,23 @@ TEST(KerfCli, CutSnapsThroughVerticesWhenAsked) {
 // that no case covers are split as cones: no sliver is left (the plain cut leaves over 50),
 // nothing is dropped, and the mesh is valid after every pose.
 TEST(KerfCli, CutSnapsTheCracksFrontWhenAsked) {
-  const kerf::v1::CutReport plain = CutLattice("lattice-curved", " --deferred");
-  const kerf::v1::CutReport snapped = CutLattice("lattice-curved", " --deferred --snap 0.2");
-  EXPECT_GT(plain.slivers(), 50u);
-  EXPECT_EQ(plain.edge_snapped_hits(), 0u);
-  EXPECT_GT(snapped.edge_snapped_hits(), 0u);
-  EXPECT_GT(snapped.split_edge_tets(), 0u);
-  EXPECT_EQ(snapped.slivers(), 0u);
-  EXPECT_GT(snapped.min_dihedral_deg(), 5);
-  EXPECT_LT(snapped.cut_tets(), plain.cut_tets());
-  for (const kerf::v1::CutReport* r : {&plain, &snapped}) {
-    EXPECT_EQ(r->dropped_hits(), 0u);
-    EXPECT_EQ(r->invalid_poses(), 0u);
-    EXPECT_TRUE(r->valid());
+  for (const std::string mode : {"", " --deferred"}) {  // progressive (the default), deferred
+    SCOPED_TRACE(mode);
+    const kerf::v1::CutReport plain = CutLattice("lattice-curved", mode);
+    const kerf::v1::CutReport snapped = CutLattice("lattice-curved", mode + " --snap 0.2");
+    EXPECT_GT(plain.slivers(), 50u);
+    EXPECT_EQ(plain.edge_snapped_hits(), 0u);
+    EXPECT_GT(snapped.edge_snapped_hits(), 0u);
+    EXPECT_GT(snapped.split_edge_tets(), 0u);
+    EXPECT_EQ(snapped.slivers(), 0u);
+    EXPECT_GT(snapped.min_dihedral_deg(), 5);
+    EXPECT_LT(snapped.cut_tets(), plain.cut_tets());
+    for (const kerf::v1::CutReport* r : {&plain, &snapped}) {
+      EXPECT_EQ(r->dropped_hits(), 0u);
+      EXPECT_EQ(r->held_poses(), 0u);
+      EXPECT_EQ(r->invalid_poses(), 0u);
+      EXPECT_TRUE(r->valid());
+    }
   }
 }
 
