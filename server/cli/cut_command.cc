@@ -21,6 +21,7 @@
 #include "mesh/mesh_quality.h"
 #include "mesh/mesh_validation.h"
 #include "sim/simulation.h"
+#include "sim/standard_scenes.h"
 
 namespace kerf::cli {
 namespace {
@@ -29,13 +30,14 @@ constexpr absl::string_view kUsage =
     "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] "
     "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
-// The mesh of a scene (an embedded name or a .textproto file) in its initial state, or of a
-// mesh file.
+// The mesh of a scene (an embedded name, "lattice-poor" or a .textproto file) in its initial
+// state, or of a mesh file.
 absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name) {
-  if (!sim::EmbeddedSceneText(name).ok() && !absl::EndsWith(name, ".textproto")) {
+  const bool poor = name == "lattice-poor";
+  if (!poor && !sim::EmbeddedSceneText(name).ok() && !absl::EndsWith(name, ".textproto")) {
     return mesh::ReadMeshFile(name);
   }
-  absl::StatusOr<sim::Scene> scene = sim::LoadScene(name);
+  absl::StatusOr<sim::Scene> scene = poor ? sim::PoorQualityLatticeScene() : sim::LoadScene(name);
   if (!scene.ok()) return scene.status();
   return MeshOfScene(*std::move(scene));
 }

@@ -529,7 +529,35 @@ void Cutter::RecordEdgeCrossings(const std::vector<Crossing>& crossings,
       ++statistics_.unrealisable_hits;
     } else {
       edge_hits_[c.key] = {c.fraction};
+      CloseAtFacePoints(c.key);
       new_edges->push_back(c.key);
+    }
+  }
+}
+
+void Cutter::CloseAtFacePoints(EdgeKey key) {
+  if (snap_fraction_ == 0) return;
+  EdgeHit& hit = edge_hits_.at(key);
+  const std::array<VertexId, 2> ends = EdgeEnds(key);
+  for (const TetId t : TetsWith(ends)) {
+    const mesh::TetVertices& corners = mesh_->tet_even_if_removed(t);
+    for (const auto& f : mesh::kTetFaces) {
+      const FaceKey face = MakeFaceKey(corners, f);
+      const auto point = face_hits_.find(face);
+      if (point == face_hits_.end() || point->second.vertex != kNoVertex) continue;
+      const auto low = std::find(face.begin(), face.end(), ends[0]) - face.begin();
+      const auto high = std::find(face.begin(), face.end(), ends[1]) - face.begin();
+      if (low == 3 || high == 3) continue;  // not a face at the edge
+      const Eigen::Vector3d& b = point->second.barycentric;
+      const double along = b[high] / (b[low] + b[high]);
+      if (b[3 - low - high] >= snap_fraction_ || std::abs(along - hit.fraction) >= snap_fraction_) {
+        continue;
+      }
+      hit.closed = hit.was_open = true;
+      hit.crossed = false;  // a later crossing opens it
+      edge_snapped_faces_[key].emplace_back(face, b);
+      face_hits_.erase(point);
+      ++statistics_.edge_snapped_hits;
     }
   }
 }
@@ -610,23 +638,29 @@ std::optional<Cutter::EdgeKey> Cutter::SnapToEdge(const FaceKey& key,
                                                   const Eigen::Vector3d& barycentric) {
   if (snap_fraction_ == 0) return std::nullopt;
   int far = 0;  // the corner opposite the edge it is near
-  // Near a vertex it would cut a short piece off the edge: it stays a face point.
-  if (barycentric.minCoeff(&far) >= snap_fraction_ ||
-      MiddleCoefficient(barycentric) < snap_fraction_) {
-    return std::nullopt;
-  }
+  if (barycentric.minCoeff(&far) >= snap_fraction_) return std::nullopt;
   const int low = far == 0 ? 1 : 0, high = far == 2 ? 1 : 2;  // the edge's ends in the key
   const EdgeKey edge = MakeEdgeKey(key[low], key[high]);
   const auto hit = edge_hits_.find(edge);
   const std::array<VertexId, 2> ends = {key[low], key[high]};
-  if ((hit != edge_hits_.end() && !hit->second.closed) || snapped_.contains(key[low]) ||
-      snapped_.contains(key[high]) || !Realisable(ends)) {
+  const double along = barycentric[high] / (barycentric[low] + barycentric[high]);
+  // An edge the blade crossed beside it at an earlier pose, not yet split, the tip passing by
+  // now: the crack's front crosses it where the blade did.
+  const bool crossed_before = hit != edge_hits_.end() && !hit->second.closed &&
+                              hit->second.at == kNoVertex && !hit->second.along &&
+                              hit->second.near_low == kNoVertex &&
+                              std::abs(along - hit->second.fraction) < snap_fraction_;
+  // Else near a vertex it would cut a short piece off the edge: it stays a face point.
+  if ((!crossed_before && MiddleCoefficient(barycentric) < snap_fraction_) ||
+      (hit != edge_hits_.end() && !hit->second.closed && !crossed_before) ||
+      snapped_.contains(key[low]) || snapped_.contains(key[high]) || !Realisable(ends)) {
     return std::nullopt;
   }
   if (hit == edge_hits_.end()) {
-    edge_hits_[edge] = {.fraction = barycentric[high] / (barycentric[low] + barycentric[high]),
-                        .crossed = false,
-                        .closed = true};
+    edge_hits_[edge] = {.fraction = along, .crossed = false, .closed = true};
+  } else if (crossed_before) {
+    hit->second.crossed = false;  // a later crossing opens it
+    hit->second.closed = hit->second.was_open = true;
   }
   edge_snapped_faces_[edge].emplace_back(key, barycentric);
   ++statistics_.edge_snapped_hits;
@@ -652,7 +686,13 @@ void Cutter::UnsnapEdge(EdgeKey key) {
         TemporaryPoint{
             .vertex = made, .weights = {1 - fraction, fraction, 0, 0}, .on_blade = false});
   }
-  edge_hits_.erase(hit);
+  if (hit->second.was_open) {  // cut as the blade crossed it
+    hit->second.closed = hit->second.was_open = false;
+    hit->second.crossed = true;
+    hit->second.near_low = hit->second.near_high = kNoVertex;
+  } else {
+    edge_hits_.erase(hit);
+  }
   for (const auto& [face, barycentric] : edge_snapped_faces_[key]) {
     face_hits_.try_emplace(face, FaceHit{barycentric});
   }

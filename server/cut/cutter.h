@@ -223,6 +223,9 @@ class Cutter {
     // The crack's front crosses the edge here (a face crossing snapped to it): one
     // vertex (near_low == near_high) that every tet at the edge splits at, not parted.
     bool closed = false;
+    // Closed from an ordinary cut (the tip passing beside the blade's crossing): unsnapping it
+    // cuts it open again.
+    bool was_open = false;
   };
   struct FaceHit {
     Eigen::Vector3d barycentric;  // on the face's vertices in increasing id order
@@ -334,6 +337,10 @@ class Cutter {
   void RecordEdgeCrossings(const std::vector<Crossing>& crossings, const Eigen::Vector3d& normal,
                            const absl::flat_hash_set<EdgeKey>& closed_now,
                            std::vector<EdgeKey>* new_edges);
+  // With snapping, the new ordinary hit `key` is closed where the tip's path crossed a face at
+  // the edge within snap_fraction_ of its point (of the edge, barycentric; and along it): the
+  // crack's front passes through it. Those face points (not made yet) are not made.
+  void CloseAtFacePoints(EdgeKey key);
   // Puts each vertex on the crack, to be parted from the side its direction points to: the hits
   // waiting at it are taken at it and its tets join one group. Not a vertex with a hit waiting
   // on an edge to its own side, nor one at a tet split for good.
