@@ -553,11 +553,8 @@ void Cutter::CloseAtFacePoints(EdgeKey key) {
       if (b[3 - low - high] >= snap_fraction_ || std::abs(along - hit.fraction) >= snap_fraction_) {
         continue;
       }
-      hit.closed = hit.was_open = true;
-      hit.crossed = false;  // a later crossing opens it
-      edge_snapped_faces_[key].emplace_back(face, b);
+      CloseEdgeAt(key, face, b);
       face_hits_.erase(point);
-      ++statistics_.edge_snapped_hits;
     }
   }
 }
@@ -658,13 +655,19 @@ std::optional<Cutter::EdgeKey> Cutter::SnapToEdge(const FaceKey& key,
   }
   if (hit == edge_hits_.end()) {
     edge_hits_[edge] = {.fraction = along, .crossed = false, .closed = true};
-  } else if (crossed_before) {
-    hit->second.crossed = false;  // a later crossing opens it
-    hit->second.closed = hit->second.was_open = true;
   }
-  edge_snapped_faces_[edge].emplace_back(key, barycentric);
-  ++statistics_.edge_snapped_hits;
+  CloseEdgeAt(edge, key, barycentric);
   return edge;
+}
+
+void Cutter::CloseEdgeAt(EdgeKey key, const FaceKey& face, const Eigen::Vector3d& barycentric) {
+  EdgeHit& hit = edge_hits_.at(key);
+  if (!hit.closed) {  // cut as the blade crossed it: unsnapping cuts it open again
+    hit.closed = hit.was_open = true;
+    hit.crossed = false;  // a later crossing opens it
+  }
+  edge_snapped_faces_[key].emplace_back(face, barycentric);
+  ++statistics_.edge_snapped_hits;
 }
 
 bool Cutter::ClosedCutSettled(const EdgeHit& hit) const {

@@ -356,6 +356,10 @@ class Cutter {
   // closed, whose ends are not snapped, and which can be cut: Realisable) and not near a
   // vertex. Returns the edge's key if so.
   std::optional<EdgeKey> SnapToEdge(const FaceKey& key, const Eigen::Vector3d& barycentric);
+  // The hit `key` (closed, or cut open by the blade, which closes it) takes the face crossing
+  // `face` at `barycentric` (on its vertices in key order): the crack's front crosses the edge
+  // there instead, and the crossing comes back if the edge is unsnapped.
+  void CloseEdgeAt(EdgeKey key, const FaceKey& face, const Eigen::Vector3d& barycentric);
   // Whether a tet split for good (progressive: frozen) uses the closed hit's vertex: the
   // crack's front stays there.
   bool ClosedCutSettled(const EdgeHit& hit) const;
