@@ -30,14 +30,13 @@ constexpr absl::string_view kUsage =
     "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] "
     "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
-// The mesh of a scene (an embedded name, "lattice-poor" or a .textproto file) in its initial
-// state, or of a mesh file.
+// The mesh of a scene (a standard one by name, see sim::StandardScene, or a .textproto file) in
+// its initial state, or of a mesh file.
 absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name) {
-  const bool poor = name == "lattice-poor";
-  if (!poor && !sim::EmbeddedSceneText(name).ok() && !absl::EndsWith(name, ".textproto")) {
-    return mesh::ReadMeshFile(name);
-  }
-  absl::StatusOr<sim::Scene> scene = poor ? sim::PoorQualityLatticeScene() : sim::LoadScene(name);
+  const bool file = absl::EndsWith(name, ".textproto");
+  absl::StatusOr<sim::Scene> scene =
+      file ? sim::LoadScene(name) : sim::StandardScene(name, /*liver_mesh_path=*/"");
+  if (!file && absl::IsNotFound(scene.status())) return mesh::ReadMeshFile(name);
   if (!scene.ok()) return scene.status();
   return MeshOfScene(*std::move(scene));
 }
