@@ -1,9 +1,11 @@
 #include "cli/cut_command.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "absl/strings/match.h"
@@ -13,6 +15,7 @@
 #include "cut/cutter.h"
 #include "cut/lag_meter.h"
 #include "geometry/tet_measures.h"
+#include "lab/crack_fidelity.h"
 #include "mesh/connected_components.h"
 #include "mesh/cut_surface.h"
 #include "mesh/face_tiling.h"
@@ -27,19 +30,8 @@ namespace kerf::cli {
 namespace {
 
 constexpr absl::string_view kUsage =
-    "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] "
+    "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end] "
     "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
-
-// The mesh of a scene (a standard one by name, see sim::StandardScene, or a .textproto file) in
-// its initial state, or of a mesh file.
-absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name) {
-  const bool file = absl::EndsWith(name, ".textproto");
-  absl::StatusOr<sim::Scene> scene =
-      file ? sim::LoadScene(name) : sim::StandardScene(name, /*liver_mesh_path=*/"");
-  if (!file && absl::IsNotFound(scene.status())) return mesh::ReadMeshFile(name);
-  if (!scene.ok()) return scene.status();
-  return MeshOfScene(*std::move(scene));
-}
 
 double TotalRestVolume(const mesh::TetMesh& m) {
   double volume = 0;
@@ -65,6 +57,15 @@ std::string CutMeshVtu(const mesh::TetMesh& m, const cut::Cutter& cutter,
 
 }  // namespace
 
+absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name) {
+  const bool file = absl::EndsWith(name, ".textproto");
+  absl::StatusOr<sim::Scene> scene =
+      file ? sim::LoadScene(name) : sim::StandardScene(name, /*liver_mesh_path=*/"");
+  if (!file && absl::IsNotFound(scene.status())) return mesh::ReadMeshFile(name);
+  if (!scene.ok()) return scene.status();
+  return MeshOfScene(*std::move(scene));
+}
+
 absl::StatusOr<mesh::TetMesh> MeshOfScene(sim::Scene scene) {
   absl::StatusOr<std::unique_ptr<sim::Simulation>> simulation =
       sim::Simulation::Create(std::move(scene));
@@ -80,6 +81,192 @@ cut::BladeLimits LimitsForMeshSize(double diagonal) {
   return limits;
 }
 
+namespace {
+
+// The checks after a pose (every pose with --check every, else after the withdrawal only):
+// validity, conformity and volume, the lag, and the trace and dump files.
+class PoseChecks {
+ public:
+  PoseChecks(mesh::TetMesh* m, const cut::Cutter* cutter, const std::vector<cut::BladePose>& poses,
+             lab::FidelityMeter* fidelity, const CutOptions& options, kerf::v1::CutReport* report)
+      : m_(m),
+        cutter_(cutter),
+        poses_(poses),
+        fidelity_(fidelity),
+        options_(options),
+        report_(report),
+        original_vertices_(m->vertex_index_bound()),
+        volume_(TotalRestVolume(*m)),
+        uncut_(*m),
+        lag_meter_(*m) {}
+
+  absl::Status Open() {
+    if (!options_.trace_path.empty()) {
+      trace_ = std::fopen(options_.trace_path.c_str(), "w");
+      if (trace_ == nullptr) {
+        return absl::NotFoundError(absl::StrCat("cannot write ", options_.trace_path));
+      }
+    }
+    if (!options_.dump_directory.empty()) {
+      std::error_code error;
+      std::filesystem::create_directories(options_.dump_directory, error);
+      if (error) {
+        return absl::NotFoundError(
+            absl::StrCat("cannot make ", options_.dump_directory, ": ", error.message()));
+      }
+    }
+    return absl::OkStatus();
+  }
+  ~PoseChecks() {
+    if (trace_ != nullptr) std::fclose(trace_);
+  }
+
+  // After pose `i` (poses.size(): withdrawn).
+  absl::Status After(std::size_t i) {
+    const bool withdrawn = i == poses_.size();
+    const double crack_area = mesh::MeasureCrackArea(*m_);
+    const bool valid = Valid();
+    if (!valid) report_->set_invalid_poses(report_->invalid_poses() + 1);
+    cut::PoseLag lag;
+    if (!withdrawn) {
+      lag = lag_meter_.Measure(poses_[i], crack_area);
+      lag_sum_ += lag.lag_area;
+      report_->set_max_lag_area(std::max(report_->max_lag_area(), lag.lag_area));
+      report_->set_max_lag_distance(std::max(report_->max_lag_distance(), lag.lag_distance));
+      report_->set_max_lag_steps(
+          std::max(report_->max_lag_steps(), static_cast<std::uint32_t>(lag.lag_steps)));
+      if (lag.lag_steps > 0) report_->set_poses_lagging(report_->poses_lagging() + 1);
+      if (fidelity_ != nullptr && i > 0) {
+        const double covered = fidelity_->StepCoverage(fidelity_->FindCrack(*m_), i - 1);
+        if (covered < 1) report_->set_poses_not_covered(report_->poses_not_covered() + 1);
+        report_->set_min_step_coverage(std::min(report_->min_step_coverage(), covered));
+      }
+    }
+    if (trace_ != nullptr) Trace(i, valid, crack_area, lag);
+    if (options_.dump_directory.empty()) return absl::OkStatus();
+    char name[32];
+    std::snprintf(name, sizeof name, "pose-%04zu.vtu", i);
+    const std::filesystem::path file =
+        std::filesystem::path(options_.dump_directory) / (withdrawn ? "withdrawn.vtu" : name);
+    return mesh::WriteTextFile(file.string(), CutMeshVtu(*m_, *cutter_, original_vertices_));
+  }
+
+  double mean_lag_area() const {
+    return poses_.empty() ? 0 : lag_sum_ / static_cast<double>(poses_.size());
+  }
+
+ private:
+  bool Valid() const {
+    return mesh::FindMeshDefects(*m_).empty() &&
+           std::abs(TotalRestVolume(*m_) - volume_) <= 1e-12 * volume_ &&
+           mesh::CheckOriginalFacesTiled(
+               uncut_, *m_, [&](mesh::TetId t) { return cutter_->SourceTet(t); },
+               [&](mesh::VertexId v) { return cutter_->PartedFrom(v); })
+               .ok();
+  }
+
+  void Trace(std::size_t i, bool valid, double crack_area, const cut::PoseLag& lag) {
+    const bool withdrawn = i == poses_.size();
+    const cut::PoseSummary& pose = cutter_->last_pose();
+    std::string cases;
+    for (int k = 0; k <= cut::kProgressiveCases; ++k) {
+      if (withdrawn || pose.tets_by_case[k] == 0) continue;
+      absl::StrAppend(&cases, cases.empty() ? "" : ",", "\"", k, "\":", pose.tets_by_case[k]);
+    }
+    const std::string line = absl::StrCat(
+        "{\"pose\":", i, ",\"withdrawn\":", withdrawn ? "true" : "false", ",\"cases\":{", cases,
+        "},\"open_tets\":", withdrawn ? 0 : pose.open_tets,
+        ",\"temporary_tets\":", withdrawn ? 0 : pose.temporary_tets,
+        ",\"held\":", !withdrawn && pose.held ? "true" : "false", ",\"tets\":", m_->tet_count(),
+        ",\"valid\":", valid ? "true" : "false", ",\"open_area\":", crack_area,
+        withdrawn ? ""
+                  : absl::StrCat(",\"swept_area\":", lag.swept_area, ",\"lag_area\":", lag.lag_area,
+                                 ",\"lag_distance\":", lag.lag_distance,
+                                 ",\"lag_steps\":", lag.lag_steps),
+        "}\n");
+    std::fputs(line.c_str(), trace_);
+  }
+
+  mesh::TetMesh* m_;
+  const cut::Cutter* cutter_;
+  const std::vector<cut::BladePose>& poses_;
+  lab::FidelityMeter* fidelity_;
+  const CutOptions& options_;
+  kerf::v1::CutReport* report_;
+  std::uint32_t original_vertices_;
+  double volume_;
+  mesh::TetMesh uncut_;
+  cut::LagMeter lag_meter_;
+  double lag_sum_ = 0;
+  std::FILE* trace_ = nullptr;
+};
+
+bool AtRest(const mesh::TetMesh& m) {
+  for (const mesh::VertexId v : m.vertices()) {
+    if (m.rest_position(v) != m.current_position(v)) return false;
+  }
+  return true;
+}
+
+void ReportStatistics(const cut::CutStatistics& s, kerf::v1::CutReport* report) {
+  for (const std::size_t n : s.poses_by_case) {
+    report->add_poses_by_case(static_cast<std::uint32_t>(n));
+  }
+  report->set_rebuilt(static_cast<std::uint32_t>(s.rebuilt));
+  report->set_moved(static_cast<std::uint32_t>(s.moved));
+  report->set_held_poses(static_cast<std::uint32_t>(s.held_poses));
+  report->set_frozen_tets(static_cast<std::uint32_t>(s.frozen_tets));
+  report->set_nonconforming_plans(static_cast<std::uint32_t>(s.nonconforming_plans));
+  report->set_thin_temporary_plans(static_cast<std::uint32_t>(s.thin_temporary_plans));
+  report->set_uncovered_temporary_plans(static_cast<std::uint32_t>(s.uncovered_temporary_plans));
+  report->set_cut_tets(static_cast<std::uint32_t>(s.cut_tets));
+  report->set_new_tets(static_cast<std::uint32_t>(s.new_tets));
+  report->set_new_per_cut(s.cut_tets ? static_cast<double>(s.new_tets) / s.cut_tets : 0.0);
+  report->set_case_i(static_cast<std::uint32_t>(s.tets_by_case[1]));
+  report->set_case_ii(static_cast<std::uint32_t>(s.tets_by_case[2]));
+  report->set_case_iii(static_cast<std::uint32_t>(s.tets_by_case[3]));
+  report->set_case_iv(static_cast<std::uint32_t>(s.tets_by_case[4]));
+  report->set_case_v(static_cast<std::uint32_t>(s.tets_by_case[5]));
+  report->set_dropped_hits(static_cast<std::uint32_t>(s.dropped_hits));
+  report->set_degenerate_hits(static_cast<std::uint32_t>(s.degenerate_hits));
+  report->set_snapped_vertices(static_cast<std::uint32_t>(s.snapped_vertices));
+  report->set_snapped_hits(static_cast<std::uint32_t>(s.snapped_hits));
+  report->set_unsnapped_vertices(static_cast<std::uint32_t>(s.unsnapped_vertices));
+  report->set_parted_vertices(static_cast<std::uint32_t>(s.parted_vertices));
+  report->set_edge_snapped_hits(static_cast<std::uint32_t>(s.edge_snapped_hits));
+  report->set_unsnapped_edges(static_cast<std::uint32_t>(s.unsnapped_edges));
+  report->set_opened_edges(static_cast<std::uint32_t>(s.opened_edges));
+  report->set_split_edge_tets(static_cast<std::uint32_t>(
+      s.tets_by_case[static_cast<std::size_t>(cut::CutCase::kSplitEdge)]));
+}
+
+// The quality of the tets the cut made: the smallest dihedral angle and the slivers.
+void ReportNewTetQuality(const mesh::TetMesh& m, const cut::Cutter& cutter,
+                         kerf::v1::CutReport* report) {
+  double min_angle = 0;
+  std::uint32_t slivers = 0, under_one = 0;
+  bool any = false;
+  for (const mesh::TetId t : m.tets()) {
+    if (!cutter.MadeByCut(t)) continue;
+    const mesh::TetVertices& v = m.tet(t);
+    const geometry::TetMeasures q = geometry::MeasureTet(
+        m.rest_position(v[0]), m.rest_position(v[1]), m.rest_position(v[2]), m.rest_position(v[3]));
+    min_angle = any ? std::min(min_angle, q.min_dihedral_deg) : q.min_dihedral_deg;
+    any = true;
+    if (q.min_dihedral_deg < mesh::kDefaultSliverAngleDeg) ++slivers;
+    if (q.min_dihedral_deg < 1) ++under_one;
+  }
+  report->set_min_dihedral_deg(min_angle);
+  report->set_slivers(slivers);
+  report->set_new_tets_under_1deg(under_one);
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
 absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
                                                  const std::vector<cut::BladePose>& poses,
                                                  absl::string_view path_name,
@@ -89,146 +276,61 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   report.set_poses(static_cast<std::uint32_t>(poses.size()));
   report.set_tets_before(static_cast<std::uint32_t>(m->tet_count()));
   report.set_mode(options.mode == cut::CutMode::kProgressive ? "progressive" : "deferred");
+  report.set_check(options.check == CheckWhen::kEveryPose ? "every" : "end");
+  report.set_snap_fraction(options.snap_fraction);
+  report.set_min_step_coverage(1);
   absl::StatusOr<cut::Cutter> cutter =
       cut::Cutter::Create(m, mesh::MeanEdgeLength(*m),
                           LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()),
                           options.mode, options.min_temporary_height, options.snap_fraction);
   if (!cutter.ok()) return cutter.status();
-  std::FILE* trace = nullptr;
-  if (!options.trace_path.empty()) {
-    trace = std::fopen(options.trace_path.c_str(), "w");
-    if (trace == nullptr) {
-      return absl::NotFoundError(absl::StrCat("cannot write ", options.trace_path));
-    }
-  }
-  if (!options.dump_directory.empty()) {
-    std::error_code error;
-    std::filesystem::create_directories(options.dump_directory, error);
-    if (error) {
-      return absl::NotFoundError(
-          absl::StrCat("cannot make ", options.dump_directory, ": ", error.message()));
-    }
-  }
+  std::optional<lab::FidelityMeter> fidelity;
+  if (AtRest(*m)) fidelity.emplace(*m);
   const std::uint32_t original_vertices = m->vertex_index_bound();
-  const double volume = TotalRestVolume(*m);
-  const mesh::TetMesh uncut = *m;
-  cut::LagMeter lag_meter(*m);
-  double lag_sum = 0;
-  // Checks, measures, traces and dumps the mesh after pose `i` (poses.size(): withdrawn).
-  const auto after_pose = [&](std::size_t i) -> absl::Status {
-    const bool withdrawn = i == poses.size();
-    const double crack_area = mesh::MeasureCrackArea(*m);
-    const bool valid = mesh::FindMeshDefects(*m).empty() &&
-                       std::abs(TotalRestVolume(*m) - volume) <= 1e-12 * volume &&
-                       mesh::CheckOriginalFacesTiled(
-                           uncut, *m, [&](mesh::TetId t) { return cutter->SourceTet(t); },
-                           [&](mesh::VertexId v) { return cutter->PartedFrom(v); })
-                           .ok();
-    if (!valid) report.set_invalid_poses(report.invalid_poses() + 1);
-    cut::PoseLag lag;
-    if (!withdrawn) {
-      lag = lag_meter.Measure(poses[i], crack_area);
-      lag_sum += lag.lag_area;
-      report.set_max_lag_area(std::max(report.max_lag_area(), lag.lag_area));
-      report.set_max_lag_distance(std::max(report.max_lag_distance(), lag.lag_distance));
-      report.set_max_lag_steps(
-          std::max(report.max_lag_steps(), static_cast<std::uint32_t>(lag.lag_steps)));
-      if (lag.lag_steps > 0) report.set_poses_lagging(report.poses_lagging() + 1);
-    }
-    if (trace != nullptr) {
-      const cut::PoseSummary& pose = cutter->last_pose();
-      std::string cases;
-      for (int k = 0; k <= cut::kProgressiveCases; ++k) {
-        if (withdrawn || pose.tets_by_case[k] == 0) continue;
-        absl::StrAppend(&cases, cases.empty() ? "" : ",", "\"", k, "\":", pose.tets_by_case[k]);
-      }
-      const std::string line = absl::StrCat(
-          "{\"pose\":", i, ",\"withdrawn\":", withdrawn ? "true" : "false", ",\"cases\":{", cases,
-          "},\"open_tets\":", withdrawn ? 0 : pose.open_tets,
-          ",\"temporary_tets\":", withdrawn ? 0 : pose.temporary_tets,
-          ",\"held\":", !withdrawn && pose.held ? "true" : "false", ",\"tets\":", m->tet_count(),
-          ",\"valid\":", valid ? "true" : "false", ",\"open_area\":", crack_area,
-          withdrawn ? ""
-                    : absl::StrCat(
-                          ",\"swept_area\":", lag.swept_area, ",\"lag_area\":", lag.lag_area,
-                          ",\"lag_distance\":", lag.lag_distance, ",\"lag_steps\":", lag.lag_steps),
-          "}\n");
-      std::fputs(line.c_str(), trace);
-    }
-    if (!options.dump_directory.empty()) {
-      char name[32];
-      std::snprintf(name, sizeof name, "pose-%04zu.vtu", i);
-      const std::filesystem::path file =
-          std::filesystem::path(options.dump_directory) / (withdrawn ? "withdrawn.vtu" : name);
-      return mesh::WriteTextFile(file.string(), CutMeshVtu(*m, *cutter, original_vertices));
-    }
-    return absl::OkStatus();
-  };
-  absl::Status status;
+  PoseChecks checks(m, &*cutter, poses, fidelity ? &*fidelity : nullptr, options, &report);
+  absl::Status status = checks.Open();
+  const bool every = options.check == CheckWhen::kEveryPose;
+  double cut_seconds = 0, check_seconds = 0;
   for (std::size_t i = 0; i < poses.size() && status.ok(); ++i) {
+    const auto start = std::chrono::steady_clock::now();
     if (absl::Status s = cutter->ApplyPose(poses[i]); !s.ok()) {
-      status = absl::InvalidArgumentError(absl::StrCat(path_name, ": pose ", i, ": ", s.message()));
-      break;
+      return absl::InvalidArgumentError(absl::StrCat(path_name, ": pose ", i, ": ", s.message()));
     }
-    status = after_pose(i);
+    cut_seconds += SecondsSince(start);
+    const auto checked = std::chrono::steady_clock::now();
+    if (fidelity && i > 0) fidelity->AddStep(poses[i - 1], poses[i]);
+    if (every) status = checks.After(i);
+    check_seconds += SecondsSince(checked);
   }
-  if (status.ok()) {
-    cutter->Finish();
-    status = after_pose(poses.size());
-  }
-  if (status.ok() && !options.out_path.empty()) {
-    status = mesh::WriteTextFile(options.out_path, CutMeshVtu(*m, *cutter, original_vertices));
-  }
-  if (trace != nullptr) std::fclose(trace);
   if (!status.ok()) return status;
-  report.set_mean_lag_area(poses.empty() ? 0 : lag_sum / static_cast<double>(poses.size()));
-  const cut::CutStatistics& s = cutter->statistics();
-  for (const std::size_t n : s.poses_by_case) {
-    report.add_poses_by_case(static_cast<std::uint32_t>(n));
+  const auto start = std::chrono::steady_clock::now();
+  cutter->Finish();
+  cut_seconds += SecondsSince(start);
+  const auto checked = std::chrono::steady_clock::now();
+  status = checks.After(poses.size());
+  if (!status.ok()) return status;
+  if (fidelity) {
+    const lab::Fidelity f = fidelity->Measure(fidelity->FindCrack(*m));
+    report.set_fidelity_measured(true);
+    report.set_swept_samples(static_cast<std::uint32_t>(f.samples));
+    report.set_crossed_tets(static_cast<std::uint32_t>(fidelity->crossed_tets()));
+    report.set_coverage(f.coverage);
+    report.set_crack_faces(static_cast<std::uint32_t>(f.crack_faces));
+    report.set_unpaired_crack_faces(static_cast<std::uint32_t>(f.unpaired_faces));
+    report.set_overcut_faces(static_cast<std::uint32_t>(f.overcut_faces));
+    report.set_max_overcut(f.max_overcut);
   }
-  report.set_rebuilt(static_cast<std::uint32_t>(s.rebuilt));
-  report.set_moved(static_cast<std::uint32_t>(s.moved));
-  report.set_held_poses(static_cast<std::uint32_t>(s.held_poses));
-  report.set_frozen_tets(static_cast<std::uint32_t>(s.frozen_tets));
-  report.set_nonconforming_plans(static_cast<std::uint32_t>(s.nonconforming_plans));
-  report.set_thin_temporary_plans(static_cast<std::uint32_t>(s.thin_temporary_plans));
-  report.set_uncovered_temporary_plans(static_cast<std::uint32_t>(s.uncovered_temporary_plans));
+  check_seconds += SecondsSince(checked);
+  report.set_cut_seconds(cut_seconds);
+  report.set_check_seconds(check_seconds);
+  if (!options.out_path.empty()) {
+    status = mesh::WriteTextFile(options.out_path, CutMeshVtu(*m, *cutter, original_vertices));
+    if (!status.ok()) return status;
+  }
+  if (every) report.set_mean_lag_area(checks.mean_lag_area());
+  ReportStatistics(cutter->statistics(), &report);
   report.set_tets_after(static_cast<std::uint32_t>(m->tet_count()));
-  report.set_cut_tets(static_cast<std::uint32_t>(s.cut_tets));
-  report.set_new_tets(static_cast<std::uint32_t>(s.new_tets));
-  report.set_new_per_cut(s.cut_tets ? static_cast<double>(s.new_tets) / s.cut_tets : 0.0);
-  report.set_case_i(static_cast<std::uint32_t>(s.tets_by_case[1]));
-  report.set_case_ii(static_cast<std::uint32_t>(s.tets_by_case[2]));
-  report.set_case_iii(static_cast<std::uint32_t>(s.tets_by_case[3]));
-  report.set_case_iv(static_cast<std::uint32_t>(s.tets_by_case[4]));
-  report.set_case_v(static_cast<std::uint32_t>(s.tets_by_case[5]));
-  report.set_dropped_hits(static_cast<std::uint32_t>(s.dropped_hits));
-  report.set_degenerate_hits(static_cast<std::uint32_t>(s.degenerate_hits));
-  report.set_snap_fraction(options.snap_fraction);
-  report.set_snapped_vertices(static_cast<std::uint32_t>(s.snapped_vertices));
-  report.set_snapped_hits(static_cast<std::uint32_t>(s.snapped_hits));
-  report.set_unsnapped_vertices(static_cast<std::uint32_t>(s.unsnapped_vertices));
-  report.set_parted_vertices(static_cast<std::uint32_t>(s.parted_vertices));
-  report.set_edge_snapped_hits(static_cast<std::uint32_t>(s.edge_snapped_hits));
-  report.set_unsnapped_edges(static_cast<std::uint32_t>(s.unsnapped_edges));
-  report.set_opened_edges(static_cast<std::uint32_t>(s.opened_edges));
-  report.set_split_edge_tets(static_cast<std::uint32_t>(
-      s.tets_by_case[static_cast<std::size_t>(cut::CutCase::kSplitEdge)]));
-  double min_angle = 0;
-  std::uint32_t slivers = 0;
-  bool any = false;
-  for (const mesh::TetId t : m->tets()) {
-    if (!cutter->MadeByCut(t)) continue;
-    const mesh::TetVertices& v = m->tet(t);
-    const geometry::TetMeasures q =
-        geometry::MeasureTet(m->rest_position(v[0]), m->rest_position(v[1]), m->rest_position(v[2]),
-                             m->rest_position(v[3]));
-    min_angle = any ? std::min(min_angle, q.min_dihedral_deg) : q.min_dihedral_deg;
-    any = true;
-    if (q.min_dihedral_deg < mesh::kDefaultSliverAngleDeg) ++slivers;
-  }
-  report.set_min_dihedral_deg(min_angle);
-  report.set_slivers(slivers);
+  ReportNewTetQuality(*m, *cutter, &report);
   report.set_components(static_cast<std::uint32_t>(mesh::FindConnectedComponents(*m).count));
   report.set_valid(mesh::FindMeshDefects(*m).empty());
   return report;
@@ -261,6 +363,17 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
     if (!value.ok()) return value.status();
     if (value->has_value()) *into = std::string((**value)[0]);
   }
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> check_arg =
+      rest.TakeOption("--check", 1);
+  if (!check_arg.ok()) return check_arg.status();
+  if (check_arg->has_value()) {
+    const absl::string_view when = (**check_arg)[0];
+    if (when != "every" && when != "end") {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--check takes every or end, not \"", when, "\"\nusage: ", kUsage));
+    }
+    options.check = when == "every" ? CheckWhen::kEveryPose : CheckWhen::kEnd;
+  }
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> path_arg =
       rest.TakeOption("--path", 1);
   if (!path_arg.ok()) return path_arg.status();
@@ -286,11 +399,18 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   absl::StatusOr<kerf::v1::CutReport> report = CutAlongPath(&*m, *poses, path_file, options);
   if (!report.ok()) return report.status();
   if (json) return FormatProtoJson(*report);
-  return absl::StrCat(report->mode(), ": cut ", report->cut_tets(), " of ", report->tets_before(),
-                      " tets into ", report->new_tets(), " (", report->new_per_cut(),
-                      " per cut tet); ", report->tets_after(), " tets, ", report->components(),
-                      " component(s), ", report->valid() ? "valid" : "INVALID", "; lag at most ",
-                      report->max_lag_steps(), " poses; wrote ", (**out_arg)[0], "\n");
+  return absl::StrCat(
+      report->mode(), ": cut ", report->cut_tets(), " of ", report->tets_before(), " tets into ",
+      report->new_tets(), " (", report->new_per_cut(), " per cut tet); ", report->tets_after(),
+      " tets, ", report->components(), " component(s), ", report->valid() ? "valid" : "INVALID",
+      report->fidelity_measured()
+          ? absl::StrCat("; coverage ", report->coverage(), ", ", report->overcut_faces(),
+                         " overcut and ", report->unpaired_crack_faces(), " unpaired crack faces")
+          : "",
+      options.check == CheckWhen::kEveryPose
+          ? absl::StrCat("; ", report->poses_not_covered(), " poses not covered at once")
+          : "",
+      "; wrote ", (**out_arg)[0], "\n");
 }
 
 }  // namespace kerf::cli

@@ -1,9 +1,9 @@
-// kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--trace OUT.jsonl]
-// [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a scene (its initial
-// state: rest, or the static solution of a STATIC scene) and writes the result. OUT.vtu has the
-// current positions as points, the point arrays rest_position and source_vertex (the original
-// vertex id, -1 for a vertex the cut made) and the cell array source_tet (the original tet each tet
-// came from).
+// kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end]
+// [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a
+// scene (its initial state: rest, or the static solution of a STATIC scene) and writes the result.
+// OUT.vtu has the current positions as points, the point arrays rest_position and source_vertex
+// (the original vertex id, -1 for a vertex the cut made) and the cell array source_tet (the
+// original tet each tet came from).
 #pragma once
 
 #include <string>
@@ -21,7 +21,11 @@ namespace kerf::cli {
 
 absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& args);
 
+// When kerf cut checks the mesh (valid, conforming, volume kept) and measures the lag.
+enum class CheckWhen { kEnd, kEveryPose };
+
 struct CutOptions {
+  CheckWhen check = CheckWhen::kEnd;
   cut::CutMode mode = cut::CutMode::kProgressive;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // progressive: see the cutter
   double snap_fraction = cut::kDefaultSnapFraction;               // deferred: see the cutter
@@ -36,9 +40,10 @@ struct CutOptions {
   std::string dump_directory;
 };
 
-// Cuts `mesh` along `poses` (then withdraws the blade), checking the mesh and measuring the
-// lag after every pose, and reports what the cut did. The blade limits scale with the mesh: at
-// most twice its size long, a quarter of it per pose.
+// Cuts `mesh` along `poses` (then withdraws the blade), checks the mesh (after every pose, or
+// once withdrawn: options.check), measures where the cut is against the blade's path
+// (lab::FidelityMeter, for a mesh at rest) and reports what the cut did. The blade limits scale
+// with the mesh: at most twice its size long, a quarter of it per pose.
 absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* mesh,
                                                  const std::vector<cut::BladePose>& poses,
                                                  absl::string_view path_name,
@@ -46,6 +51,10 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* mesh,
 
 // The blade limits for a mesh of this size (bounding-box diagonal, in its length unit).
 cut::BladeLimits LimitsForMeshSize(double diagonal);
+
+// The mesh of a scene (a standard one by name, see sim::StandardScene, or a .textproto file) in
+// its initial state, or of a mesh file.
+absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name);
 
 // A copy of a scene's mesh in the scene's initial state (rest, or the static solution of a
 // STATIC scene).

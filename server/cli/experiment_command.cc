@@ -35,11 +35,13 @@ absl::StatusOr<std::string> LatticeCut(bool json) {
   experiment.set_name("lattice-cut");
   experiment.set_scene("lattice-tension, at static equilibrium under 10% tension");
   // Each path cut as by default, then deferred with snapping (the open cutters' 0.2 of an edge).
-  CutOptions snapping;
+  CutOptions by_default;
+  by_default.check = CheckWhen::kEveryPose;
+  CutOptions snapping = by_default;
   snapping.mode = cut::CutMode::kDeferred;
   snapping.snap_fraction = 0.2;
   for (const char* path : {"lattice-straight", "lattice-curved"}) {
-    for (const CutOptions& options : {CutOptions{}, snapping}) {
+    for (const CutOptions& options : {by_default, snapping}) {
       absl::StatusOr<sim::Scene> scene = sim::BuildScene(*spec, ".");
       if (!scene.ok()) return scene.status();
       absl::StatusOr<mesh::TetMesh> m = MeshOfScene(*std::move(scene));
@@ -87,6 +89,7 @@ absl::StatusOr<std::string> ProgressiveCases(bool json) {
     mesh::TetMesh m = cut::ScriptedPathLattice();
     CutOptions options;
     options.mode = cut::CutMode::kProgressive;
+    options.check = CheckWhen::kEveryPose;
     absl::StatusOr<kerf::v1::CutReport> report = CutAlongPath(&m, path.poses, path.name, options);
     if (!report.ok()) return report.status();
     *experiment.add_cuts() = *std::move(report);

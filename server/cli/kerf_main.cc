@@ -9,6 +9,7 @@
 #include "cli/cut_command.h"
 #include "cli/experiment_command.h"
 #include "cli/mesh_commands.h"
+#include "cli/path_command.h"
 #include "cli/replay_command.h"
 #include "cli/sim_command.h"
 #include "cli/static_command.h"
@@ -24,7 +25,10 @@ constexpr absl::string_view kUsage =
     "       kerf sim list\n"
     "       kerf static DECK.inp [--json]\n"
     "       kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred]\n"
-    "                [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]\n"
+    "                [--check every|end] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR]\n"
+    "                [--json]\n"
+    "       kerf path hand|vertices|edges|face-plane MESH --out PATH.json [--seed N]\n"
+    "                [--duration S] [--rate HZ]\n"
     "       kerf experiment lattice-cut|progressive-cases|live-cut [--json]\n"
     "       kerf experiment tradeoff [--resolutions N,N,...] [--reference-resolution N]\n"
     "                [--seconds S] [--json]\n"
@@ -50,6 +54,8 @@ int main(int argc, char** argv) {
     result = kerf::cli::RunExperimentCommand(rest);
   } else if (args[0] == "cut") {
     result = kerf::cli::RunCutCommand(rest);
+  } else if (args[0] == "path") {
+    result = kerf::cli::RunPathCommand(rest);
   } else if (args[0] == "sim") {
     result = kerf::cli::RunSimCommand(rest);
   } else if (args[0] == "static") {

@@ -137,6 +137,50 @@ TEST(KerfCli, ReplayRefusesBadInputClearly) {
   std::remove(junk.c_str());
 }
 
+// kerf cut measures where the cut is against the path (lab::FidelityMeter) on a mesh at rest:
+// the straight path through the paper's lattice is cut where it went; a hand-like path made by
+// kerf path is read back and measured too.
+TEST(KerfCli, CutReportsCoverageOfTheSweptSurface) {
+  const std::string dir = ::testing::TempDir();
+  ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 4 6 4 --size 0.04 0.06 0.04 --out ", dir, "/paper.msh"))
+                .exit_code,
+            0);
+  const auto cut = [&](absl::string_view path, absl::string_view extra) {
+    const CliResult run = Kerf(absl::StrCat("cut ", dir, "/paper.msh --path ", path, " --out ", dir,
+                                            "/paper-cut.vtu --json", extra));
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    kerf::v1::CutReport report;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok());
+    return report;
+  };
+  const kerf::v1::CutReport straight =
+      cut(absl::StrCat(KERF_SOURCE_DIR, "/server/cut/paths/lattice-straight.json"), "");
+  EXPECT_EQ(straight.check(), "end");
+  EXPECT_TRUE(straight.fidelity_measured());
+  EXPECT_EQ(straight.crossed_tets(), straight.cut_tets());
+  EXPECT_GE(straight.swept_samples(), 20 * straight.crossed_tets());
+  EXPECT_EQ(straight.coverage(), 1);
+  EXPECT_EQ(straight.overcut_faces(), 0u);
+  EXPECT_EQ(straight.unpaired_crack_faces(), 0u);
+  EXPECT_GT(straight.crack_faces(), 0u);
+  const CliResult path = Kerf(absl::StrCat(
+      "path hand ", dir, "/paper.msh --seed 3 --duration 0.3 --out ", dir, "/hand.json"));
+  ASSERT_EQ(path.exit_code, 0) << path.output;
+  EXPECT_THAT(path.output, HasSubstr("hand path, seed 3: "));
+  const kerf::v1::CutReport hand = cut(dir + "/hand.json", " --check every --deferred");
+  EXPECT_EQ(hand.check(), "every");
+  EXPECT_GT(hand.swept_samples(), 0u);
+  EXPECT_GT(hand.coverage(), 0);
+  EXPECT_LE(hand.coverage(), 1);
+  EXPECT_LE(hand.min_step_coverage(), 1);
+  EXPECT_THAT(Kerf(absl::StrCat("cut ", dir, "/paper.msh --path ", dir, "/hand.json --out ", dir,
+                                "/x.vtu --check sometimes"))
+                  .output,
+              HasSubstr("--check takes every or end, not \"sometimes\""));
+  EXPECT_THAT(Kerf(absl::StrCat("path wobble ", dir, "/paper.msh --out ", dir, "/x.json")).output,
+              HasSubstr("unknown path family \"wobble\""));
+}
+
 TEST(KerfCli, CutWritesTheCutMeshWithItsSourcesAndReports) {
   const std::string dir = ::testing::TempDir();
   ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 6 2 2 --size 0.06 0.02 0.02 --out ", dir, "/bar.msh"))
@@ -187,9 +231,10 @@ TEST(KerfCli, CutTracesAndDumpsEveryPoseProgressively) {
   kerf::v1::CutReport reports[2];
   for (const bool progressive : {true, false}) {
     const std::string mode = progressive ? "progressive" : "deferred";
-    const CliResult run = Kerf(absl::StrCat(
-        "cut ", dir, "/bar.msh --path ", dir, "/sweep.json --out ", dir, "/", mode, ".vtu --", mode,
-        " --trace ", dir, "/", mode, ".jsonl --dump-every-pose ", dir, "/", mode, "-poses --json"));
+    const CliResult run = Kerf(
+        absl::StrCat("cut ", dir, "/bar.msh --path ", dir, "/sweep.json --out ", dir, "/", mode,
+                     ".vtu --", mode, " --trace ", dir, "/", mode, ".jsonl --dump-every-pose ", dir,
+                     "/", mode, "-poses --json --check every"));
     ASSERT_EQ(run.exit_code, 0) << run.output;
     kerf::v1::CutReport& report = reports[progressive ? 0 : 1];
     ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok());
@@ -435,9 +480,9 @@ TEST(KerfCli, LiveCutExperimentShowsExplicitBlowUpsAndImplicitStability) {
 kerf::v1::CutReport CutLattice(absl::string_view path, absl::string_view extra,
                                absl::string_view scene = "lattice-tension") {
   kerf::v1::CutReport report;
-  const CliResult run =
-      Kerf(absl::StrCat("cut ", scene, " --path ", KERF_SOURCE_DIR, "/server/cut/paths/", path,
-                        ".json --out ", ::testing::TempDir(), "/cut.vtu --json", extra));
+  const CliResult run = Kerf(
+      absl::StrCat("cut ", scene, " --path ", KERF_SOURCE_DIR, "/server/cut/paths/", path,
+                   ".json --out ", ::testing::TempDir(), "/cut.vtu --json --check every", extra));
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok());
   return report;

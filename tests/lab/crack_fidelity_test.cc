@@ -1,0 +1,139 @@
+#include "lab/crack_fidelity.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "absl/container/flat_hash_map.h"
+#include "mesh/box_lattice.h"
+
+namespace kerf::lab {
+namespace {
+
+using cut::BladePose;
+using mesh::TetMesh;
+using mesh::VertexId;
+
+// A 4 x 2 x 2 lattice of unit cubes: the tissue.
+TetMesh Tissue() { return *mesh::MakeBoxLattice({.cells_x = 4, .cells_y = 2, .cells_z = 2}); }
+
+// The tissue parted along the plane x = `plane` (a lattice plane): the tets beyond it take
+// copies of the vertices on it, so the plane's faces become the crack's two lips. Unless
+// `whole` the copies stop at y = 1 (a crack through half the depth only).
+TetMesh PartedAt(double plane, bool whole = true) {
+  TetMesh m = Tissue();
+  absl::flat_hash_map<VertexId, VertexId> copy;
+  std::vector<mesh::TetId> tets(m.tets().begin(), m.tets().end());
+  for (const mesh::TetId t : tets) {
+    mesh::TetVertices v = m.tet(t);
+    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+    for (const VertexId u : v) middle += m.rest_position(u) / 4;
+    if (middle.x() < plane || (!whole && middle.y() > 1)) continue;
+    bool changed = false;
+    for (VertexId& u : v) {
+      const Eigen::Vector3d p = m.rest_position(u);
+      if (p.x() != plane || (!whole && p.y() >= 1)) continue;
+      if (!copy.contains(u)) copy[u] = m.AddVertex(p);
+      u = copy[u];
+      changed = true;
+    }
+    if (!changed) continue;
+    EXPECT_TRUE(m.RemoveTet(t).ok());
+    EXPECT_TRUE(m.AddTet(v).ok());
+  }
+  return m;
+}
+
+// A blade standing through the whole tissue along z, swept along y at x = `x` over `steps`.
+std::vector<BladePose> SweepAt(double x, int steps) {
+  std::vector<BladePose> poses;
+  for (int i = 0; i <= steps; ++i) {
+    const double y = -0.5 + 3.0 * i / steps;
+    poses.push_back({.time = 0.01 * i, .tip = {x, y, -0.5}, .heel = {x, y, 2.5}});
+  }
+  return poses;
+}
+
+FidelityMeter MeterFor(const std::vector<BladePose>& poses) {
+  FidelityMeter meter(Tissue());
+  for (std::size_t i = 1; i < poses.size(); ++i) meter.AddStep(poses[i - 1], poses[i]);
+  return meter;
+}
+
+TEST(FidelityMeter, SamplesEveryCrossedTetAtLeastTwentyTimes) {
+  const FidelityMeter meter = MeterFor(SweepAt(2.3, 12));
+  EXPECT_EQ(meter.steps(), 12u);
+  EXPECT_GT(meter.crossed_tets(), 8u);
+  EXPECT_GE(meter.fewest_samples_per_crossed_tet(), 20u);
+  std::size_t outside = meter.StepSamples(0) + meter.StepSamples(11);
+  EXPECT_GT(meter.samples(), outside);
+  EXPECT_GT(meter.StepSamples(5), 0u);
+}
+
+TEST(FidelityMeter, AnUncutMeshCoversNothing) {
+  const FidelityMeter meter = MeterFor(SweepAt(2, 12));
+  const CrackFaces crack = meter.FindCrack(Tissue());
+  EXPECT_EQ(crack.size(), 0u);
+  const Fidelity f = meter.Measure(crack);
+  EXPECT_EQ(f.covered, 0u);
+  EXPECT_EQ(f.coverage, 0);
+}
+
+TEST(FidelityMeter, ACrackWhereTheBladeWentCoversItAll) {
+  const FidelityMeter meter = MeterFor(SweepAt(2, 12));
+  const CrackFaces crack = meter.FindCrack(PartedAt(2));
+  EXPECT_EQ(crack.size(), 2u * 2 * 2 * 2);  // 4 squares, 2 triangles each, two lips
+  const Fidelity f = meter.Measure(crack);
+  EXPECT_EQ(f.coverage, 1);
+  EXPECT_EQ(f.unpaired_faces, 0u);
+  EXPECT_EQ(f.overcut_faces, 0u);
+  EXPECT_LT(f.max_overcut, 1e-12);
+  for (std::size_t k = 0; k < meter.steps(); ++k) EXPECT_EQ(meter.StepCoverage(crack, k), 1);
+}
+
+TEST(FidelityMeter, ACrackBesideTheBladeIsOvercutAndCoversNothing) {
+  const FidelityMeter meter = MeterFor(SweepAt(2.5, 12));  // half a cube from the crack
+  const Fidelity f = meter.Measure(meter.FindCrack(PartedAt(2)));
+  EXPECT_EQ(f.coverage, 0);
+  EXPECT_EQ(f.overcut_faces, 16u);
+  // Half a cube in local edge lengths (each tet's mean edge is (3 + 2 sqrt 2 + sqrt 3) / 6).
+  EXPECT_NEAR(f.max_overcut, 0.5 * 6 / (3 + 2 * std::sqrt(2.0) + std::sqrt(3.0)), 1e-12);
+}
+
+TEST(FidelityMeter, ACrackWithinAQuarterEdgeCovers) {
+  // The mean edge of a lattice tet is (3 + 2 sqrt 2 + sqrt 3) / 6 = 1.26; 0.2 is within 0.25 of it.
+  const FidelityMeter meter = MeterFor(SweepAt(2.2, 12));
+  const Fidelity f = meter.Measure(meter.FindCrack(PartedAt(2)));
+  EXPECT_EQ(f.coverage, 1);
+  EXPECT_EQ(f.overcut_faces, 0u);
+}
+
+TEST(FidelityMeter, AHalfCrackCoversAboutHalf) {
+  const FidelityMeter meter = MeterFor(SweepAt(2, 12));
+  const Fidelity f = meter.Measure(meter.FindCrack(PartedAt(2, /*whole=*/false)));
+  EXPECT_GT(f.coverage, 0.4);
+  EXPECT_LT(f.coverage, 0.75);
+  EXPECT_EQ(f.overcut_faces, 0u);
+}
+
+TEST(FidelityMeter, UnpairedLipsAreCounted) {
+  // A lip face whose tet is removed leaves its twin unpaired (the removed tet's other faces
+  // become crack faces too, each without a twin).
+  TetMesh m = PartedAt(2);
+  const FidelityMeter meter = MeterFor(SweepAt(2, 12));
+  EXPECT_EQ(meter.Measure(meter.FindCrack(m)).unpaired_faces, 0u);
+  for (const mesh::TetId t : m.tets()) {
+    int on_plane = 0;
+    for (const VertexId u : m.tet(t)) on_plane += m.rest_position(u).x() == 2 ? 1 : 0;
+    if (on_plane == 3) {
+      ASSERT_TRUE(m.RemoveTet(t).ok());
+      break;
+    }
+  }
+  const Fidelity f = meter.Measure(meter.FindCrack(m));
+  EXPECT_GE(f.unpaired_faces, 1u);
+  EXPECT_EQ(f.crack_faces, 16u - 1 + f.unpaired_faces - 1);  // the lip's twin, and the new ones
+}
+
+}  // namespace
+}  // namespace kerf::lab
