@@ -12,6 +12,7 @@
 #include "absl/strings/str_cat.h"
 #include "cli/command_args.h"
 #include "cli/json_output.h"
+#include "cut/crack_cutter.h"
 #include "cut/cutter.h"
 #include "cut/lag_meter.h"
 #include "geometry/tet_measures.h"
@@ -31,6 +32,7 @@ namespace {
 
 constexpr absl::string_view kUsage =
     "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end] "
+    "[--cutter cases|crack] [--uncovered OUT.csv] "
     "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
 double TotalRestVolume(const mesh::TetMesh& m) {
@@ -40,7 +42,8 @@ double TotalRestVolume(const mesh::TetMesh& m) {
 }
 
 // The VTU of a cut mesh with the arrays kerf cut writes.
-std::string CutMeshVtu(const mesh::TetMesh& m, const cut::Cutter& cutter,
+template <typename Cutter>
+std::string CutMeshVtu(const mesh::TetMesh& m, const Cutter& cutter,
                        std::uint32_t original_vertices) {
   mesh::VtuExtraArrays extra;
   std::vector<std::int64_t> source_vertex;
@@ -85,9 +88,10 @@ namespace {
 
 // The checks after a pose (every pose with --check every, else after the withdrawal only):
 // validity, conformity and volume, the lag, and the trace and dump files.
+template <typename Cutter>
 class PoseChecks {
  public:
-  PoseChecks(mesh::TetMesh* m, const cut::Cutter* cutter, const std::vector<cut::BladePose>& poses,
+  PoseChecks(mesh::TetMesh* m, const Cutter* cutter, const std::vector<cut::BladePose>& poses,
              lab::FidelityMeter* fidelity, const CutOptions& options, kerf::v1::CutReport* report)
       : m_(m),
         cutter_(cutter),
@@ -188,7 +192,7 @@ class PoseChecks {
   }
 
   mesh::TetMesh* m_;
-  const cut::Cutter* cutter_;
+  const Cutter* cutter_;
   const std::vector<cut::BladePose>& poses_;
   lab::FidelityMeter* fidelity_;
   const CutOptions& options_;
@@ -241,7 +245,8 @@ void ReportStatistics(const cut::CutStatistics& s, kerf::v1::CutReport* report) 
 }
 
 // The quality of the tets the cut made: the smallest dihedral angle and the slivers.
-void ReportNewTetQuality(const mesh::TetMesh& m, const cut::Cutter& cutter,
+template <typename Cutter>
+void ReportNewTetQuality(const mesh::TetMesh& m, const Cutter& cutter,
                          kerf::v1::CutReport* report) {
   double min_angle = 0;
   std::uint32_t slivers = 0, under_one = 0;
@@ -265,29 +270,15 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-}  // namespace
-
-absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
-                                                 const std::vector<cut::BladePose>& poses,
-                                                 absl::string_view path_name,
-                                                 const CutOptions& options) {
-  kerf::v1::CutReport report;
-  report.set_path(std::string(path_name));
-  report.set_poses(static_cast<std::uint32_t>(poses.size()));
-  report.set_tets_before(static_cast<std::uint32_t>(m->tet_count()));
-  report.set_mode(options.mode == cut::CutMode::kProgressive ? "progressive" : "deferred");
-  report.set_check(options.check == CheckWhen::kEveryPose ? "every" : "end");
-  report.set_snap_fraction(options.snap_fraction);
-  report.set_min_step_coverage(1);
-  absl::StatusOr<cut::Cutter> cutter =
-      cut::Cutter::Create(m, mesh::MeanEdgeLength(*m),
-                          LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()),
-                          options.mode, options.min_temporary_height, options.snap_fraction);
-  if (!cutter.ok()) return cutter.status();
+template <typename Cutter>
+absl::StatusOr<kerf::v1::CutReport> CutWith(Cutter* cutter, mesh::TetMesh* m,
+                                            const std::vector<cut::BladePose>& poses,
+                                            absl::string_view path_name, const CutOptions& options,
+                                            kerf::v1::CutReport report) {
   std::optional<lab::FidelityMeter> fidelity;
   if (AtRest(*m)) fidelity.emplace(*m);
   const std::uint32_t original_vertices = m->vertex_index_bound();
-  PoseChecks checks(m, &*cutter, poses, fidelity ? &*fidelity : nullptr, options, &report);
+  PoseChecks<Cutter> checks(m, cutter, poses, fidelity ? &*fidelity : nullptr, options, &report);
   absl::Status status = checks.Open();
   const bool every = options.check == CheckWhen::kEveryPose;
   double cut_seconds = 0, check_seconds = 0;
@@ -310,7 +301,15 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   status = checks.After(poses.size());
   if (!status.ok()) return status;
   if (fidelity) {
-    const lab::Fidelity f = fidelity->Measure(fidelity->FindCrack(*m));
+    const lab::CrackFaces crack = fidelity->FindCrack(*m);
+    const lab::Fidelity f = fidelity->Measure(crack);
+    if (!options.uncovered_path.empty()) {
+      std::string csv = "x,y,z,edge\n";
+      for (const auto& [p, edge] : fidelity->Uncovered(crack)) {
+        absl::StrAppend(&csv, p.x(), ",", p.y(), ",", p.z(), ",", edge, "\n");
+      }
+      if (absl::Status s = mesh::WriteTextFile(options.uncovered_path, csv); !s.ok()) return s;
+    }
     report.set_fidelity_measured(true);
     report.set_swept_samples(static_cast<std::uint32_t>(f.samples));
     report.set_crossed_tets(static_cast<std::uint32_t>(fidelity->crossed_tets()));
@@ -336,6 +335,36 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   return report;
 }
 
+}  // namespace
+
+absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
+                                                 const std::vector<cut::BladePose>& poses,
+                                                 absl::string_view path_name,
+                                                 const CutOptions& options) {
+  kerf::v1::CutReport report;
+  report.set_path(std::string(path_name));
+  report.set_poses(static_cast<std::uint32_t>(poses.size()));
+  report.set_tets_before(static_cast<std::uint32_t>(m->tet_count()));
+  report.set_mode(options.mode == cut::CutMode::kProgressive ? "progressive" : "deferred");
+  report.set_check(options.check == CheckWhen::kEveryPose ? "every" : "end");
+  report.set_snap_fraction(options.snap_fraction);
+  report.set_min_step_coverage(1);
+  const double cell_size = mesh::MeanEdgeLength(*m);
+  const cut::BladeLimits limits =
+      LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal());
+  if (options.cutter == CutterKind::kCrack) {
+    report.set_mode("crack, deferred");
+    absl::StatusOr<cut::CrackCutter> cutter =
+        cut::CrackCutter::Create(m, cell_size, limits, options.snap_fraction);
+    if (!cutter.ok()) return cutter.status();
+    return CutWith(&*cutter, m, poses, path_name, options, std::move(report));
+  }
+  absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(
+      m, cell_size, limits, options.mode, options.min_temporary_height, options.snap_fraction);
+  if (!cutter.ok()) return cutter.status();
+  return CutWith(&*cutter, m, poses, path_name, options, std::move(report));
+}
+
 absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& args) {
   CommandArgs rest(args);
   const bool json = rest.TakeFlag("--json");
@@ -358,10 +387,22 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   }
   for (auto [flag, into] :
        {std::pair<absl::string_view, std::string*>{"--trace", &options.trace_path},
+        {"--uncovered", &options.uncovered_path},
         {"--dump-every-pose", &options.dump_directory}}) {
     absl::StatusOr<std::optional<std::vector<absl::string_view>>> value = rest.TakeOption(flag, 1);
     if (!value.ok()) return value.status();
     if (value->has_value()) *into = std::string((**value)[0]);
+  }
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> cutter_arg =
+      rest.TakeOption("--cutter", 1);
+  if (!cutter_arg.ok()) return cutter_arg.status();
+  if (cutter_arg->has_value()) {
+    const absl::string_view kind = (**cutter_arg)[0];
+    if (kind != "cases" && kind != "crack") {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--cutter takes cases or crack, not \"", kind, "\"\nusage: ", kUsage));
+    }
+    options.cutter = kind == "crack" ? CutterKind::kCrack : CutterKind::kCases;
   }
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> check_arg =
       rest.TakeOption("--check", 1);
@@ -373,6 +414,8 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
           absl::StrCat("--check takes every or end, not \"", when, "\"\nusage: ", kUsage));
     }
     options.check = when == "every" ? CheckWhen::kEveryPose : CheckWhen::kEnd;
+  } else if (!options.trace_path.empty() || !options.dump_directory.empty()) {
+    options.check = CheckWhen::kEveryPose;  // a trace or dump is of every pose
   }
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> path_arg =
       rest.TakeOption("--path", 1);

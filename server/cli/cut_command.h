@@ -21,10 +21,16 @@ namespace kerf::cli {
 
 absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& args);
 
-// When kerf cut checks the mesh (valid, conforming, volume kept) and measures the lag.
+// When kerf cut checks the mesh (valid, conforming, volume kept) and measures the lag. Unset on
+// the command line: at the end, or every pose when a trace or dump asks for every pose.
 enum class CheckWhen { kEnd, kEveryPose };
 
+// Which cutter cuts: cut::Cutter (the cases and their fallbacks: progressive or deferred) or
+// cut::CrackCutter (total steps; deferred).
+enum class CutterKind { kCases, kCrack };
+
 struct CutOptions {
+  CutterKind cutter = CutterKind::kCases;
   CheckWhen check = CheckWhen::kEnd;
   cut::CutMode mode = cut::CutMode::kProgressive;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // progressive: see the cutter
@@ -32,6 +38,8 @@ struct CutOptions {
   // Non-empty: the cut mesh as VTU (current positions as points; the arrays rest_position,
   // source_vertex and source_tet).
   std::string out_path;
+  // Non-empty: the swept surface's samples no crack face covers, as CSV (x, y, z, local edge).
+  std::string uncovered_path;
   // Non-empty: one JSON line per pose (and one after the blade is withdrawn): the Table 1
   // cases of the tets the blade is in, tets alive, valid, and the lag (cut::LagMeter).
   std::string trace_path;

@@ -101,7 +101,12 @@ FidelityMeter::FidelityMeter(const mesh::TetMesh& tissue, const FidelityOptions&
     tets_.push_back(c);
     tet_edge_.push_back(edges / 6);
   }
+  absl::flat_hash_map<mesh::TetId, std::uint32_t> index_of;
+  for (const mesh::TetId t : tissue.tets())
+    index_of[t] = static_cast<std::uint32_t>(index_of.size());
+  boundary_face_.assign(tets_.size(), {false, false, false, false});
   for (const mesh::BoundaryTriangle& b : mesh::ExtractBoundarySurface(tissue)) {
+    boundary_face_[index_of.at(b.tet)][b.opposite_corner] = true;
     std::array<Eigen::Vector3d, 3> t;
     for (int k = 0; k < 3; ++k) t[k] = tissue.rest_position(b.vertices[k]);
     boundary_index_.Add(static_cast<std::uint32_t>(boundary_.size()),
@@ -132,18 +137,33 @@ void FidelityMeter::AddTriangle(const std::array<Eigen::Vector3d, 3>& t, std::ui
   const Eigen::Vector3d high = t[0].cwiseMax(t[1]).cwiseMax(t[2]);
   for (const std::uint32_t tet : tet_index_.InBox(low, high)) {
     Polygon piece = ClipToTet({t[0], t[1], t[2]}, tets_[tet]);
-    if (piece.empty()) continue;
+    if (piece.empty() || OnBoundary(piece, tet)) continue;
     double area = 0;
     for (std::size_t k = 1; k + 1 < piece.size(); ++k) {
       area += TriangleArea(piece[0], piece[k], piece[k + 1]);
     }
-    if (area <= 0) continue;
+    if (area <= 1e-9 * tet_edge_[tet] * tet_edge_[tet]) continue;  // a piece on an edge or corner
     const double edge = tet_edge_[tet];
     const int n = std::max(1, static_cast<int>(std::ceil(options_.step_samples_per_square_edge *
                                                          area / (edge * edge))));
     for (int s = 0; s < n; ++s) step_samples_.push_back({PointOn(piece, random), edge, tet});
     pieces_.push_back({tet, std::move(piece), area});
   }
+}
+
+bool FidelityMeter::OnBoundary(const std::vector<Eigen::Vector3d>& piece, std::uint32_t tet) const {
+  const std::array<Eigen::Vector3d, 4>& c = tets_[tet];
+  for (int k = 0; k < 4; ++k) {
+    if (!boundary_face_[tet][k]) continue;
+    const Eigen::Vector3d& p = c[(k + 1) % 4];
+    const Eigen::Vector3d normal = (c[(k + 2) % 4] - p).cross(c[(k + 3) % 4] - p).normalized();
+    if (std::all_of(piece.begin(), piece.end(), [&](const Eigen::Vector3d& x) {
+          return std::abs(normal.dot(x - p)) <= 1e-9 * tet_edge_[tet];
+        })) {
+      return true;
+    }
+  }
+  return false;
 }
 
 const std::vector<FidelityMeter::Sample>& FidelityMeter::Samples() const {
@@ -249,6 +269,15 @@ Fidelity FidelityMeter::Measure(const CrackFaces& crack) const {
     if (farthest > options_.tolerance * edge * (1 + 1e-9)) ++f.overcut_faces;
   }
   return f;
+}
+
+std::vector<std::pair<Eigen::Vector3d, double>> FidelityMeter::Uncovered(
+    const CrackFaces& crack) const {
+  std::vector<std::pair<Eigen::Vector3d, double>> uncovered;
+  for (const Sample& s : Samples()) {
+    if (!Covered(crack, s)) uncovered.push_back({s.point, s.edge});
+  }
+  return uncovered;
 }
 
 double FidelityMeter::StepCoverage(const CrackFaces& crack, std::size_t k) const {

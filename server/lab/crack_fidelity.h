@@ -4,9 +4,10 @@
 // The swept surface is the two triangles of each step between poses (T_i, H_i, H_i+1) and
 // (T_i, H_i+1, T_i+1), taken at the tissue's rest positions (the path is given in the frame of
 // the tissue at rest, as `kerf cut` cuts it) and clipped to each tet of the tissue. Each piece
-// is sampled with seeded points (at least 20 per piece, more for a large one: options). The crack
-// of a cut mesh is its faces of one tet that do not lie on the tissue's boundary. With l the mean
-// edge length of the tissue's tet that holds a point:
+// is sampled with seeded points (a piece lying in the tissue's boundary is not: the blade ran
+// along the surface there and cut nothing) (at least 20 per piece, more for a large one: options).
+// The crack of a cut mesh is its faces of one tet that do not lie on the tissue's boundary. With l
+// the mean edge length of the tissue's tet that holds a point:
 //   coverage: the share of samples with a crack face within `tolerance` l;
 //   overcut: the crack faces with a point (a corner or the middle) farther than that from the
 //            swept surface;
@@ -82,6 +83,8 @@ class FidelityMeter {
 
   // Coverage over every step so far, overcut and unpaired faces. O(samples + crack faces).
   Fidelity Measure(const CrackFaces& crack) const;
+  // The samples no crack face covers, and the local edge length at each (m).
+  std::vector<std::pair<Eigen::Vector3d, double>> Uncovered(const CrackFaces& crack) const;
   // The share of step k's samples that the crack covers (1 for a step that swept nothing
   // inside the tissue).
   double StepCoverage(const CrackFaces& crack, std::size_t k) const;
@@ -112,12 +115,15 @@ class FidelityMeter {
   // Clips the triangle to the tissue's tets, keeps the pieces and samples them for the step.
   void AddTriangle(const std::array<Eigen::Vector3d, 3>& triangle, std::uint64_t seed);
   const std::vector<Sample>& Samples() const;
+  // Whether a piece in `tet` lies in one of its faces on the tissue's boundary.
+  bool OnBoundary(const std::vector<Eigen::Vector3d>& piece, std::uint32_t tet) const;
   bool Covered(const CrackFaces& crack, const Sample& s) const;
 
   FidelityOptions options_;
   double mean_edge_;
   std::vector<std::array<Eigen::Vector3d, 4>> tets_;  // rest corners
   std::vector<double> tet_edge_;                      // mean edge length per tet
+  std::vector<std::array<bool, 4>> boundary_face_;    // per tet: is face k (opposite k) outside
   BoxIndex tet_index_;
   std::vector<std::array<Eigen::Vector3d, 3>> boundary_;  // the tissue's boundary triangles
   BoxIndex boundary_index_;

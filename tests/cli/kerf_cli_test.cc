@@ -173,6 +173,16 @@ TEST(KerfCli, CutReportsCoverageOfTheSweptSurface) {
   EXPECT_GT(hand.coverage(), 0);
   EXPECT_LE(hand.coverage(), 1);
   EXPECT_LE(hand.min_step_coverage(), 1);
+  // The crack cutter cuts where the hand went, valid after every pose.
+  const kerf::v1::CutReport crack = cut(dir + "/hand.json", " --check every --cutter crack");
+  EXPECT_EQ(crack.mode(), "crack, deferred");
+  EXPECT_EQ(crack.invalid_poses(), 0u);
+  EXPECT_GE(crack.coverage(), 0.97);
+  EXPECT_EQ(crack.overcut_faces(), 0u);
+  EXPECT_THAT(Kerf(absl::StrCat("cut ", dir, "/paper.msh --path ", dir, "/hand.json --out ", dir,
+                                "/x.vtu --cutter sharp"))
+                  .output,
+              HasSubstr("--cutter takes cases or crack, not \"sharp\""));
   EXPECT_THAT(Kerf(absl::StrCat("cut ", dir, "/paper.msh --path ", dir, "/hand.json --out ", dir,
                                 "/x.vtu --check sometimes"))
                   .output,

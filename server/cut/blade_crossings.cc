@@ -1,0 +1,168 @@
+#include "cut/blade_crossings.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/container/flat_hash_set.h"
+#include "geometry/moving_crossing.h"
+#include "geometry/segment_box.h"
+#include "geometry/segment_distance.h"
+#include "geometry/segment_triangle_intersection.h"
+#include "geometry/tet_measures.h"
+
+namespace kerf::cut {
+namespace {
+
+using mesh::Index;
+using mesh::TetId;
+using mesh::VertexId;
+
+// The tip's path passes through an edge when it comes this near it, in edge lengths.
+constexpr double kThroughEdge = 1e-9;
+
+std::uint64_t EdgeKey(VertexId a, VertexId b) {
+  const std::uint64_t lo = std::min(Index(a), Index(b)), hi = std::max(Index(a), Index(b));
+  return lo << 32 | hi;
+}
+
+}  // namespace
+
+std::optional<double> BladeCrossings::TipPathThroughEdge(const BladePose& from, const BladePose& to,
+                                                         VertexId low, VertexId high) const {
+  const Eigen::Vector3d& a = mesh_->current_position(low);
+  const Eigen::Vector3d& b = mesh_->current_position(high);
+  const geometry::ClosestPoints c = geometry::ClosestPointsOfSegments(from.tip, to.tip, a, b);
+  if (c.distance > kThroughEdge * (b - a).norm() || c.s == 0) return std::nullopt;
+  return c.t;
+}
+
+absl::StatusOr<BladeCrossings> BladeCrossings::Create(const mesh::TetMesh* mesh, double cell_size) {
+  const double margin = 0.25 * cell_size;
+  absl::StatusOr<TetGrid> grid = TetGrid::Build(*mesh, cell_size, margin);
+  if (!grid.ok()) return grid.status();
+  return BladeCrossings(mesh, *std::move(grid), margin);
+}
+
+Eigen::Vector3d BladeCrossings::MovedSincePrevious(VertexId v) const {
+  const auto it = previous_.find(Index(v));
+  return it == previous_.end() ? Eigen::Vector3d::Zero()
+                               : Eigen::Vector3d(mesh_->current_position(v) - it->second);
+}
+
+std::vector<TetId> BladeCrossings::Near(const Eigen::Vector3d& low,
+                                        const Eigen::Vector3d& high) const {
+  std::vector<TetId> near = grid_.Candidates(low, high);
+  std::erase_if(near, [&](TetId t) {
+    if (!mesh_->IsAlive(t)) return true;
+    const mesh::TetVertices& v = mesh_->tet(t);
+    Eigen::Vector3d box_low = mesh_->current_position(v[0]), box_high = box_low;
+    for (int k = 1; k < 4; ++k) {
+      box_low = box_low.cwiseMin(mesh_->current_position(v[k]));
+      box_high = box_high.cwiseMax(mesh_->current_position(v[k]));
+    }
+    return (box_low.array() > high.array()).any() || (box_high.array() < low.array()).any();
+  });
+  return near;
+}
+
+Crossings BladeCrossings::Find(
+    const BladePose& from, const BladePose& to,
+    const std::function<bool(VertexId, VertexId)>& skip_edge,
+    const std::function<bool(const std::array<VertexId, 3>&)>& skip_face) {
+  double farthest = 0;
+  for (const auto& [v, then] : previous_) {
+    if (mesh_->IsAlive(VertexId(v))) {
+      farthest = std::max(farthest, (mesh_->current_position(VertexId(v)) - then).norm());
+    }
+  }
+  const auto motion = [&](VertexId v) {
+    const Eigen::Vector3d& x = mesh_->current_position(v);
+    return geometry::Motion{x - MovedSincePrevious(v), x};
+  };
+  const geometry::Motion tip{from.tip, to.tip}, heel{from.heel, to.heel};
+  Eigen::Vector3d low = from.tip.cwiseMin(from.heel).cwiseMin(to.tip).cwiseMin(to.heel);
+  Eigen::Vector3d high = from.tip.cwiseMax(from.heel).cwiseMax(to.tip).cwiseMax(to.heel);
+  low.array() -= farthest;
+  high.array() += farthest;
+  Crossings found;
+  found.near = Near(low, high);
+  absl::flat_hash_set<std::uint64_t> tested_edges;
+  absl::flat_hash_set<std::array<VertexId, 3>> tested_faces;
+  for (const TetId t : found.near) {
+    const mesh::TetVertices v = mesh_->tet(t);
+    for (const auto& [i, j] : mesh::kTetEdges) {
+      const VertexId lo = Index(v[i]) < Index(v[j]) ? v[i] : v[j];
+      const VertexId hi = lo == v[i] ? v[j] : v[i];
+      if (!tested_edges.insert(EdgeKey(lo, hi)).second || skip_edge(lo, hi)) continue;
+      if (const auto c = geometry::FirstEdgeCrossing(motion(lo), motion(hi), tip, heel)) {
+        found.edges.push_back({lo, hi, c->fraction});
+      } else if (const std::optional<double> at = TipPathThroughEdge(from, to, lo, hi)) {
+        found.edges.push_back({lo, hi, *at});
+      }
+    }
+    for (const auto& f : mesh::kTetFaces) {
+      std::array<VertexId, 3> face = {v[f[0]], v[f[1]], v[f[2]]};
+      std::sort(face.begin(), face.end());
+      if (!tested_faces.insert(face).second || skip_face(face)) continue;
+      if (const auto c = geometry::FirstPointCrossing(tip, motion(face[0]), motion(face[1]),
+                                                      motion(face[2]))) {
+        found.faces.push_back({face, c->barycentric});
+      }
+    }
+  }
+  return found;
+}
+
+std::vector<FaceCrossing> BladeCrossings::FacesCrossedBy(
+    const BladePose& pose,
+    const std::function<bool(const std::array<VertexId, 3>&)>& skip_face) const {
+  std::vector<FaceCrossing> crossed;
+  absl::flat_hash_set<std::array<VertexId, 3>> tested;
+  for (const TetId t : Near(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel))) {
+    const mesh::TetVertices v = mesh_->tet(t);
+    for (const auto& f : mesh::kTetFaces) {
+      std::array<VertexId, 3> face = {v[f[0]], v[f[1]], v[f[2]]};
+      std::sort(face.begin(), face.end());
+      if (!tested.insert(face).second || skip_face(face)) continue;
+      if (const auto c = geometry::IntersectSegmentTriangle(
+              pose.tip, pose.heel, mesh_->current_position(face[0]),
+              mesh_->current_position(face[1]), mesh_->current_position(face[2]))) {
+        crossed.push_back({face, c->barycentric});
+      }
+    }
+  }
+  return crossed;
+}
+
+absl::Status BladeCrossings::Remember(const BladePose& pose) {
+  previous_.clear();
+  if (absl::Status s = grid_.RefreshTopology(); !s.ok()) return s;
+  for (const TetId t : Near(pose.tip.cwiseMin(pose.heel).array() - margin_,
+                            pose.tip.cwiseMax(pose.heel).array() + margin_)) {
+    for (const VertexId v : mesh_->tet(t)) {
+      previous_.try_emplace(Index(v), mesh_->current_position(v));
+    }
+  }
+  return absl::OkStatus();
+}
+
+bool BladeCrossings::BladeMeets(const mesh::TetVertices& v, const BladePose& pose) const {
+  std::array<Eigen::Vector3d, 4> x;
+  for (int i = 0; i < 4; ++i) x[i] = mesh_->current_position(v[i]);
+  const Eigen::Vector3d lo = x[0].cwiseMin(x[1]).cwiseMin(x[2].cwiseMin(x[3]));
+  const Eigen::Vector3d hi = x[0].cwiseMax(x[1]).cwiseMax(x[2].cwiseMax(x[3]));
+  if (!geometry::SegmentMeetsBox(pose.tip, pose.heel, lo, hi, 1e-6 * (hi - lo).norm())) {
+    return false;
+  }
+  for (const Eigen::Vector3d& end : {pose.tip, pose.heel}) {
+    if (geometry::ContainsPoint(x[0], x[1], x[2], x[3], end)) return true;
+  }
+  for (const auto& f : mesh::kTetFaces) {
+    if (geometry::IntersectSegmentTriangle(pose.tip, pose.heel, x[f[0]], x[f[1]], x[f[2]])) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace kerf::cut

@@ -1,0 +1,86 @@
+// Where the blade, moving from one pose to the next, crossed the mesh: the tet edges its edge
+// swept over and the faces its tip went through, found on the deformed (current) positions.
+// The tissue may move between poses too: each vertex near the blade is taken to move straight
+// from where it was at the previous pose to where it is now, like the blade, and a crossing is
+// where the two met (geometry/moving_crossing.h), so only the relative motion cuts.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "absl/container/flat_hash_map.h"
+#include "absl/status/statusor.h"
+#include "cut/blade.h"
+#include "cut/tet_grid.h"
+#include "mesh/tet_mesh.h"
+
+namespace kerf::cut {
+
+struct EdgeCrossing {
+  mesh::VertexId low, high;  // low has the smaller id
+  double fraction;           // from low to high, in [0, 1]
+};
+
+struct FaceCrossing {
+  std::array<mesh::VertexId, 3> face;  // smallest id first
+  Eigen::Vector3d barycentric;         // on face's vertices in that order
+};
+
+struct Crossings {
+  std::vector<EdgeCrossing> edges;
+  std::vector<FaceCrossing> faces;
+  std::vector<mesh::TetId> near;  // the live tets whose box meets the swept surface's
+};
+
+class BladeCrossings {
+ public:
+  // `cell_size` (m): the grid's, a mean edge length is a good choice. The mesh must outlive it.
+  static absl::StatusOr<BladeCrossings> Create(const mesh::TetMesh* mesh, double cell_size);
+
+  // The crossings of the blade moving from `from` to `to`, each edge and face once; edges and
+  // faces `skip` names are not tested (they are cut already). O(tets near the swept surface).
+  Crossings Find(const BladePose& from, const BladePose& to,
+                 const std::function<bool(mesh::VertexId, mesh::VertexId)>& skip_edge,
+                 const std::function<bool(const std::array<mesh::VertexId, 3>&)>& skip_face);
+
+  // The faces the blade at `pose` crosses (its edge, tip to heel), but those `skip` names.
+  std::vector<FaceCrossing> FacesCrossedBy(
+      const BladePose& pose,
+      const std::function<bool(const std::array<mesh::VertexId, 3>&)>& skip_face) const;
+
+  // Keeps the current positions of the vertices near `pose`, for the next Find. Call after the
+  // pose was applied (the grid learns the tets it made).
+  absl::Status Remember(const BladePose& pose);
+
+  // Whether the blade at `pose` meets the tet (its inside or boundary), on current positions.
+  bool BladeMeets(const mesh::TetVertices& tet, const BladePose& pose) const;
+
+  // Live tets whose box may meet the box [low, high].
+  std::vector<mesh::TetId> Near(const Eigen::Vector3d& low, const Eigen::Vector3d& high) const;
+
+  // After the mesh deformed (a physics step). O(vertices).
+  absl::Status MeshDeformed() { return grid_.Refresh(); }
+
+ private:
+  BladeCrossings(const mesh::TetMesh* mesh, TetGrid grid, double margin)
+      : mesh_(mesh), grid_(std::move(grid)), margin_(margin) {}
+
+  // Where the tip's path from `from` to `to` passes through the edge, as a fraction from `low`,
+  // when the blade's edge does not cross it (the blade sweeping in the edge's plane, or its tip
+  // along it): there the crack's front crosses the edge.
+  std::optional<double> TipPathThroughEdge(const BladePose& from, const BladePose& to,
+                                           mesh::VertexId low, mesh::VertexId high) const;
+
+  // How far `v` moved since the previous pose (zero if it was not near the blade then).
+  Eigen::Vector3d MovedSincePrevious(mesh::VertexId v) const;
+
+  const mesh::TetMesh* mesh_;
+  TetGrid grid_;
+  double margin_;  // m: vertices within it of the blade are remembered
+  absl::flat_hash_map<std::uint32_t, Eigen::Vector3d> previous_;  // by vertex index
+};
+
+}  // namespace kerf::cut

@@ -1,0 +1,59 @@
+// The split of one tet by the crack through it, for any points the crack has on its faces and
+// edges: it cannot fail. Each face is split by the rule of cut/face_split.h, so the tets at a
+// face always agree; inside, the tet is split by the paper's minimal cases where the pattern is
+// one of them (bisection at a lone edge point, cases i-v of cut/tet_split.h, checked to make
+// the same face triangles), and otherwise as a cone from one point inside (the apex) over the
+// triangles of its faces, which tiles any tet whatever its faces carry.
+//
+// The crack inside the tet is spanned by the traces of its faces: where they do not all lie on
+// one face, the crack's faces are the cone's faces from the apex through each trace segment (or
+// the minimal case's crack). A face wholly on the crack is a crack face too. Which vertices the
+// crack parts is not decided here (cut/star_parting.h).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "cut/face_split.h"
+#include "cut/tet_split.h"
+#include "mesh/mesh_ids.h"
+
+namespace kerf::cut {
+
+struct TetCrack {
+  mesh::TetVertices corners;
+  // Face k is opposite corner k, its corners in mesh::kTetFaces order; a face that NeedsHub has
+  // its hub as `inside`.
+  std::array<FacePoints, 4> points;
+  std::array<FaceSplit, 4> faces;
+};
+
+// The crack of a tet from its faces' points (their corners set from `corners`).
+TetCrack MakeTetCrack(const mesh::TetVertices& corners, std::array<FacePoints, 4> points);
+
+// The distinct ends of the faces' trace segments, and whether they do not all lie on one face.
+std::vector<mesh::VertexId> TracePoints(const TetCrack& crack);
+bool HasInnerCrack(const TetCrack& crack);
+
+enum class CrackSplitKind { kWhole, kBisected, kMinimal, kCone };
+
+struct CrackSplit {
+  CrackSplitKind kind = CrackSplitKind::kWhole;
+  // kSplitEdge when bisected, the case when minimal, kStar for a cone, else kNone.
+  CutCase cut_case = CutCase::kNone;
+  std::vector<mesh::TetVertices> tets;  // tiling the tet, in no particular orientation
+  std::vector<std::array<mesh::VertexId, 3>> crack_faces;  // each once
+};
+
+// The split without a new point: the tet whole, bisected or one of the minimal cases; nullopt
+// when none fits (then SplitAsCone). `rest` gives rest positions (for case iii's choice).
+std::optional<CrackSplit> SplitWithoutApex(
+    const TetCrack& crack, const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
+
+// The cone from `apex`, a vertex strictly inside the tet, over its faces' triangles.
+CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
+
+}  // namespace kerf::cut

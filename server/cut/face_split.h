@@ -1,0 +1,54 @@
+// How one triangle face of the mesh is split by the points the crack has on it: the rule every
+// tet at the face follows, so the two tets that share a face split it alike by construction.
+//
+// The triangulation depends only on the face's points: edge points (one at most inside each
+// edge) and an inside point (the tip's crossing of the face, the blade's crossing of it now, or
+// a hub the caller makes where three edges are cut and nothing is inside). Corners the crack
+// passes through (snapped) never change it; they only add trace segments where the face has at
+// most one point. The trace is where the crack crosses the face: the segments the crack surface
+// of each tet at the face spans from.
+//
+//   inside point I:   a fan from I over the boundary; the trace runs from I to each edge point
+//                     (and to each corner on the crack when no edge is cut);
+//   three edge points (no I): as above, I being the hub;
+//   two edge points:  the corner between them cut off, the quadrilateral left split through its
+//                     vertex of smallest key (corners before edge points, then by id: the rule of
+//                     cut/tet_split.h); the trace is the segment between them;
+//   one edge point E: two triangles from the opposite corner; the trace runs from E to each
+//                     corner on the crack;
+//   none:             the face whole; its edges between corners on the crack are trace.
+// A triangle of the split whose three vertices are on the crack (its points, and its corners on
+// the crack) lies on the crack: the blade swept in the face's plane there (a whole face when
+// its three corners are on the crack).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "mesh/mesh_ids.h"
+
+namespace kerf::cut {
+
+struct FacePoints {
+  std::array<mesh::VertexId, 3> corners;
+  // The point strictly inside edge k, from corners[k] to corners[(k + 1) % 3].
+  std::array<std::optional<mesh::VertexId>, 3> on_edge;
+  std::optional<mesh::VertexId> inside;  // strictly inside the face
+  std::array<bool, 3> corner_on_crack = {false, false, false};
+};
+
+// Whether the face needs a hub: three edge points and no inside point. The caller then puts one
+// strictly inside the face (the middle of the edge points) as `inside`.
+bool NeedsHub(const FacePoints& points);
+
+struct FaceSplit {
+  std::vector<std::array<mesh::VertexId, 3>> triangles;  // tile the face; each in face order
+  std::vector<std::array<mesh::VertexId, 2>> trace;      // each with the smaller id first
+  std::vector<std::array<mesh::VertexId, 3>> on_crack;   // the triangles on the crack
+};
+
+// The split of the face. Requires !NeedsHub(points).
+FaceSplit SplitFace(const FacePoints& points);
+
+}  // namespace kerf::cut

@@ -1,0 +1,228 @@
+#include "cut/crack_split.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+
+#include "geometry/tet_measures.h"
+
+namespace kerf::cut {
+namespace {
+
+using mesh::VertexId;
+using Triangle = std::array<VertexId, 3>;
+
+// One tet and the points a crack may leave on it, with positions, for checking splits.
+class OneTet {
+ public:
+  OneTet() {
+    corners_ = {VertexId(0), VertexId(1), VertexId(2), VertexId(3)};
+    at_ = {{0, {0, 0, 0}}, {1, {1, 0, 0}}, {2, {0.2, 1, 0}}, {3, {0.3, 0.3, 1}}};
+  }
+  Eigen::Vector3d Rest(VertexId v) const { return at_.at(static_cast<int>(v)); }
+
+  // A point at `t` along the edge between corners i and j (shared by the faces at it).
+  void CutEdge(int i, int j, double t) {
+    const VertexId v = Add((1 - t) * Rest(corners_[i]) + t * Rest(corners_[j]));
+    edge_points_[{std::min(i, j), std::max(i, j)}] = v;
+  }
+  // A point inside face k at the given weights on its corners (kTetFaces order).
+  void PointInFace(int k, Eigen::Vector3d w) {
+    const auto& f = mesh::kTetFaces[k];
+    face_points_[k] = Add(w[0] * Rest(corners_[f[0]]) + w[1] * Rest(corners_[f[1]]) +
+                          w[2] * Rest(corners_[f[2]]));
+  }
+  void CornerOnCrack(int i) { on_crack_[i] = true; }
+
+  TetCrack Crack() {
+    std::array<FacePoints, 4> points;
+    for (int k = 0; k < 4; ++k) {
+      const auto& f = mesh::kTetFaces[k];
+      FacePoints& p = points[k];
+      for (int j = 0; j < 3; ++j) {
+        const int a = f[j], b = f[(j + 1) % 3];
+        if (const auto it = edge_points_.find({std::min(a, b), std::max(a, b)});
+            it != edge_points_.end()) {
+          p.on_edge[j] = it->second;
+        }
+        p.corner_on_crack[j] = on_crack_[f[j]];
+      }
+      if (face_points_.contains(k)) p.inside = face_points_[k];
+      p.corners = {corners_[f[0]], corners_[f[1]], corners_[f[2]]};
+      if (NeedsHub(p)) {
+        Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+        for (int j = 0; j < 3; ++j) middle += Rest(*p.on_edge[j]) / 3;
+        p.inside = Add(middle);
+      }
+    }
+    return MakeTetCrack(corners_, points);
+  }
+  VertexId Apex(const Eigen::Vector4d& w) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) x += w[k] * Rest(corners_[k]);
+    return Add(x);
+  }
+  double Volume(const mesh::TetVertices& t) const {
+    return geometry::SignedVolume(Rest(t[0]), Rest(t[1]), Rest(t[2]), Rest(t[3]));
+  }
+  const mesh::TetVertices& corners() const { return corners_; }
+
+ private:
+  VertexId Add(const Eigen::Vector3d& x) {
+    const int id = 100 + static_cast<int>(at_.size());
+    at_[id] = x;
+    return VertexId(id);
+  }
+  mesh::TetVertices corners_;
+  std::map<int, Eigen::Vector3d> at_;
+  std::map<std::pair<int, int>, VertexId> edge_points_;
+  std::map<int, VertexId> face_points_;
+  std::array<bool, 4> on_crack_ = {false, false, false, false};
+};
+
+Triangle Sorted(Triangle t) {
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+// The split tiles the tet: pieces of one sign of volume adding up to the tet's, every face of
+// a piece either shared by exactly two pieces or on the tet's faces as the face rule splits
+// them, and every crack face a face of the pieces.
+void ExpectTiles(OneTet& tet, const TetCrack& crack, const CrackSplit& split) {
+  double volume = 0;
+  std::map<Triangle, int> faces;
+  for (const mesh::TetVertices& t : split.tets) {
+    const double v = std::abs(tet.Volume(t));
+    EXPECT_GT(v, 1e-9) << "a flat piece";
+    volume += v;
+    for (const auto& f : mesh::kTetFaces) ++faces[Sorted({t[f[0]], t[f[1]], t[f[2]]})];
+  }
+  EXPECT_NEAR(volume, std::abs(tet.Volume(tet.corners())), 1e-12);
+  std::map<Triangle, int> outside;
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.triangles) ++outside[Sorted(t)];
+  }
+  for (const auto& [face, count] : faces) {
+    if (outside.contains(face)) {
+      EXPECT_EQ(count, 1) << "a face triangle twice";
+    } else {
+      EXPECT_EQ(count, 2) << "an inner face not shared";
+    }
+  }
+  for (const auto& [face, count] : outside) EXPECT_TRUE(faces.contains(face)) << "a hole";
+  for (const Triangle& c : split.crack_faces) EXPECT_TRUE(faces.contains(Sorted(c)));
+}
+
+TEST(CrackSplit, AnyPointsOnATetSplitIt) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int cones = 0, minimal = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    OneTet tet;
+    for (const auto& [i, j] : mesh::kTetEdges) {
+      if (unit(random) < 0.4) tet.CutEdge(i, j, 0.2 + 0.6 * unit(random));
+    }
+    for (int k = 0; k < 4; ++k) {
+      if (unit(random) < 0.2) {
+        Eigen::Vector3d w(0.2 + unit(random), 0.2 + unit(random), 0.2 + unit(random));
+        tet.PointInFace(k, w / w.sum());
+      }
+      if (unit(random) < 0.15) tet.CornerOnCrack(k);
+    }
+    const TetCrack crack = tet.Crack();
+    std::optional<CrackSplit> split =
+        SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+    if (!split) {
+      split = SplitAsCone(crack, tet.Apex({0.3, 0.2, 0.25, 0.25}));
+      ++cones;
+    } else if (split->kind == CrackSplitKind::kMinimal) {
+      ++minimal;
+    }
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    ExpectTiles(tet, crack, *split);
+    if (HasInnerCrack(crack)) {
+      EXPECT_FALSE(split->crack_faces.empty());
+    }
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(cones, 1000);
+  EXPECT_GT(minimal, 100);
+}
+
+TEST(CrackSplit, ACornerCutOffIsCaseOne) {
+  OneTet tet;
+  tet.CutEdge(0, 1, 0.5);
+  tet.CutEdge(0, 2, 0.4);
+  tet.CutEdge(0, 3, 0.6);
+  const TetCrack crack = tet.Crack();
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->cut_case, CutCase::kOneCornerOff);
+  EXPECT_EQ(split->tets.size(), 4u);
+  EXPECT_EQ(split->crack_faces.size(), 1u);
+  ExpectTiles(tet, crack, *split);
+}
+
+TEST(CrackSplit, TwoAndTwoIsCaseTwo) {
+  OneTet tet;
+  tet.CutEdge(0, 2, 0.5);
+  tet.CutEdge(0, 3, 0.5);
+  tet.CutEdge(1, 2, 0.5);
+  tet.CutEdge(1, 3, 0.5);
+  const TetCrack crack = tet.Crack();
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->cut_case, CutCase::kTwoAndTwo);
+  EXPECT_EQ(split->tets.size(), 6u);
+  EXPECT_EQ(split->crack_faces.size(), 2u);
+}
+
+TEST(CrackSplit, ACrackThroughAnEdgeAndTwoCornersBisectsTheTet) {
+  OneTet tet;
+  tet.CutEdge(0, 1, 0.5);
+  tet.CornerOnCrack(2);
+  tet.CornerOnCrack(3);
+  const TetCrack crack = tet.Crack();
+  EXPECT_TRUE(HasInnerCrack(crack));
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->kind, CrackSplitKind::kBisected);
+  EXPECT_EQ(split->tets.size(), 2u);
+  EXPECT_EQ(split->crack_faces.size(), 1u);
+}
+
+TEST(CrackSplit, ACrackEndingInsideIsCaseThreeWithAFaceOfItsTwoPointsAndTheEdgePoint) {
+  OneTet tet;
+  tet.CutEdge(0, 1, 0.5);
+  tet.PointInFace(3, {0.3, 0.3, 0.4});  // face 012
+  tet.PointInFace(2, {0.3, 0.3, 0.4});  // face 013
+  const TetCrack crack = tet.Crack();
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->cut_case, CutCase::kCrackOneEdge);
+  EXPECT_EQ(split->crack_faces.size(), 1u);
+  ExpectTiles(tet, crack, *split);
+}
+
+TEST(CrackSplit, NoPointsLeavesTheTetWholeAndAFaceOnTheCrackIsACrackFace) {
+  OneTet tet;
+  EXPECT_EQ(SplitWithoutApex(tet.Crack(), [&](VertexId v) { return tet.Rest(v); })->tets.size(),
+            1u);
+  tet.CornerOnCrack(1);
+  tet.CornerOnCrack(2);
+  tet.CornerOnCrack(3);
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(tet.Crack(), [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->kind, CrackSplitKind::kWhole);
+  EXPECT_EQ(split->crack_faces.size(), 1u);
+}
+
+}  // namespace
+}  // namespace kerf::cut

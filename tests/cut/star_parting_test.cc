@@ -1,0 +1,82 @@
+#include "cut/star_parting.h"
+
+#include <gtest/gtest.h>
+
+#include "mesh/box_lattice.h"
+#include "mesh/connected_components.h"
+#include "mesh/mesh_validation.h"
+
+namespace kerf::cut {
+namespace {
+
+using mesh::TetMesh;
+using mesh::VertexId;
+
+// One cube of six tets around its diagonal from vertex 0 to the far corner.
+TetMesh Cube() { return *mesh::MakeBoxLattice({}); }
+
+// The faces of the cube's tets that contain the diagonal, in no order.
+std::vector<FaceKey> DiagonalFaces(const TetMesh& m) {
+  std::vector<FaceKey> faces;
+  for (const mesh::TetId t : m.tets()) {
+    const mesh::TetVertices& v = m.tet(t);
+    for (const auto& f : mesh::kTetFaces) {
+      const FaceKey key = MakeFaceKey(v[f[0]], v[f[1]], v[f[2]]);
+      const bool on_diagonal = (m.rest_position(key[0]) - Eigen::Vector3d(0, 0, 0)).norm() == 0 &&
+                               m.TetsAroundFace(key[0], key[1], key[2]).size() == 2;
+      if (on_diagonal && std::find(faces.begin(), faces.end(), key) == faces.end()) {
+        faces.push_back(key);
+      }
+    }
+  }
+  return faces;
+}
+
+std::vector<VertexId> All(const TetMesh& m) { return {m.vertices().begin(), m.vertices().end()}; }
+
+TEST(StarParting, NoCrackPartsNothing) {
+  TetMesh m = Cube();
+  CrackFaceSet crack;
+  EXPECT_TRUE(PartVertices(&m, All(m), &crack).copies.empty());
+}
+
+TEST(StarParting, ACrackEndingAtAnEdgeLeavesItsVerticesWhole) {
+  // One face of the ring around the diagonal: the ring is still joined around the other way, so
+  // the diagonal's ends stay whole; the face's third vertex, whose two tets meet only there, is
+  // parted.
+  TetMesh m = Cube();
+  const std::vector<FaceKey> ring = DiagonalFaces(m);
+  ASSERT_EQ(ring.size(), 6u);
+  CrackFaceSet crack = {ring[0]};
+  const Parting parting = PartVertices(&m, All(m), &crack);
+  ASSERT_EQ(parting.copies.size(), 1u);
+  EXPECT_NE(m.rest_position(parting.copies[0].from), Eigen::Vector3d(0, 0, 0));
+  EXPECT_NE(m.rest_position(parting.copies[0].from), Eigen::Vector3d(1, 1, 1));
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
+}
+
+TEST(StarParting, ACrackThroughTheBodyPartsItInTwo) {
+  // The two faces of the ring in the plane x = y split the cube in two halves.
+  TetMesh m = Cube();
+  CrackFaceSet crack;
+  for (const FaceKey& f : DiagonalFaces(m)) {
+    bool in_plane = true;
+    for (const VertexId v : f) in_plane &= m.rest_position(v).x() == m.rest_position(v).y();
+    if (in_plane) crack.insert(f);
+  }
+  ASSERT_EQ(crack.size(), 2u);
+  const double volume = 1;
+  const Parting parting = PartVertices(&m, All(m), &crack);
+  EXPECT_EQ(parting.copies.size(), 4u);  // the plane's four corners
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
+  double after = 0;
+  for (const mesh::TetId t : m.tets()) after += mesh::RestVolume(m, t);
+  EXPECT_NEAR(after, volume, 1e-15);
+  for (const VertexCopy& c : parting.copies) {
+    EXPECT_EQ(m.rest_position(c.copy), m.rest_position(c.from));
+  }
+}
+
+}  // namespace
+}  // namespace kerf::cut
