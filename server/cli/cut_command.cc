@@ -129,9 +129,17 @@ class PoseChecks {
   absl::Status After(std::size_t i) {
     const bool withdrawn = i == poses_.size();
     const double crack_area = mesh::MeasureCrackArea(*m_);
-    const bool valid = Valid();
-    if (!valid) report_->set_invalid_poses(report_->invalid_poses() + 1);
+    const absl::Status valid_status = Valid();
+    const bool valid = valid_status.ok();
+    if (!valid) {
+      report_->set_invalid_poses(report_->invalid_poses() + 1);
+      if (report_->first_invalid().empty()) {
+        report_->set_first_invalid(absl::StrCat(withdrawn ? "withdrawal" : absl::StrCat("pose ", i),
+                                                ": ", valid_status.message()));
+      }
+    }
     cut::PoseLag lag;
+    double covered = 1;
     if (!withdrawn) {
       lag = lag_meter_.Measure(poses_[i], crack_area);
       lag_sum_ += lag.lag_area;
@@ -141,12 +149,12 @@ class PoseChecks {
           std::max(report_->max_lag_steps(), static_cast<std::uint32_t>(lag.lag_steps)));
       if (lag.lag_steps > 0) report_->set_poses_lagging(report_->poses_lagging() + 1);
       if (fidelity_ != nullptr && i > 0) {
-        const double covered = fidelity_->StepCoverage(fidelity_->FindCrack(*m_), i - 1);
+        covered = fidelity_->StepCoverage(fidelity_->FindCrack(*m_), i - 1);
         if (covered < 1) report_->set_poses_not_covered(report_->poses_not_covered() + 1);
         report_->set_min_step_coverage(std::min(report_->min_step_coverage(), covered));
       }
     }
-    if (trace_ != nullptr) Trace(i, valid, crack_area, lag);
+    if (trace_ != nullptr) Trace(i, valid, crack_area, lag, covered);
     if (options_.dump_directory.empty()) return absl::OkStatus();
     char name[32];
     std::snprintf(name, sizeof name, "pose-%04zu.vtu", i);
@@ -160,16 +168,20 @@ class PoseChecks {
   }
 
  private:
-  bool Valid() const {
-    return mesh::FindMeshDefects(*m_).empty() &&
-           std::abs(TotalRestVolume(*m_) - volume_) <= 1e-12 * volume_ &&
-           mesh::CheckOriginalFacesTiled(
-               uncut_, *m_, [&](mesh::TetId t) { return cutter_->SourceTet(t); },
-               [&](mesh::VertexId v) { return cutter_->PartedFrom(v); })
-               .ok();
+  absl::Status Valid() const {
+    if (absl::Status s = mesh::ValidateMesh(*m_); !s.ok()) return s;
+    const double volume = TotalRestVolume(*m_);
+    if (std::abs(volume - volume_) > 1e-12 * volume_) {
+      return absl::FailedPreconditionError(
+          absl::StrCat("rest volume ", volume, " instead of ", volume_));
+    }
+    return mesh::CheckOriginalFacesTiled(
+        uncut_, *m_, [&](mesh::TetId t) { return cutter_->SourceTet(t); },
+        [&](mesh::VertexId v) { return cutter_->PartedFrom(v); });
   }
 
-  void Trace(std::size_t i, bool valid, double crack_area, const cut::PoseLag& lag) {
+  void Trace(std::size_t i, bool valid, double crack_area, const cut::PoseLag& lag,
+             double covered) {
     const bool withdrawn = i == poses_.size();
     const cut::PoseSummary& pose = cutter_->last_pose();
     std::string cases;
@@ -186,7 +198,7 @@ class PoseChecks {
         withdrawn ? ""
                   : absl::StrCat(",\"swept_area\":", lag.swept_area, ",\"lag_area\":", lag.lag_area,
                                  ",\"lag_distance\":", lag.lag_distance,
-                                 ",\"lag_steps\":", lag.lag_steps),
+                                 ",\"lag_steps\":", lag.lag_steps, ",\"step_coverage\":", covered),
         "}\n");
     std::fputs(line.c_str(), trace_);
   }
@@ -353,9 +365,12 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   const cut::BladeLimits limits =
       LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal());
   if (options.cutter == CutterKind::kCrack) {
-    report.set_mode("crack, deferred");
+    const double snap =
+        options.snap_fraction > 0 ? options.snap_fraction : cut::kDefaultCrackSnapFraction;
+    report.set_mode(absl::StrCat("crack, ", report.mode()));
+    report.set_snap_fraction(snap);
     absl::StatusOr<cut::CrackCutter> cutter =
-        cut::CrackCutter::Create(m, cell_size, limits, options.snap_fraction);
+        cut::CrackCutter::Create(m, cell_size, limits, options.mode, snap);
     if (!cutter.ok()) return cutter.status();
     return CutWith(&*cutter, m, poses, path_name, options, std::move(report));
   }

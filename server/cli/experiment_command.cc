@@ -5,6 +5,7 @@
 #include "absl/strings/str_split.h"
 #include "cli/command_args.h"
 #include "cli/cut_command.h"
+#include "cli/hand_cut_experiment.h"
 #include "cli/json_output.h"
 #include "cli/stability_experiment.h"
 #include "cli/tradeoff_experiment.h"
@@ -282,13 +283,15 @@ absl::StatusOr<std::string> RunExperimentCommand(const std::vector<absl::string_
   const bool json = rest.TakeFlag("--json");
   if (args[0] == "tradeoff") return Tradeoff(&rest, json);
   if (args[0] == "stability") return Stability(&rest, json);
+  if (args[0] == "hand-cuts") return RunHandCutExperiment(&rest, json);
   if (absl::Status s = rest.TakePositionals(0, kUsage).status(); !s.ok()) return s;
   if (args[0] == "lattice-cut") return LatticeCut(json);
   if (args[0] == "progressive-cases") return ProgressiveCases(json);
   if (args[0] == "live-cut") return LiveCut(json);
   return absl::InvalidArgumentError(
       absl::StrCat("unknown experiment '", args[0],
-                   "'; there are: lattice-cut, progressive-cases, live-cut, tradeoff, stability"));
+                   "'; there are: lattice-cut, progressive-cases, live-cut, tradeoff, stability, "
+                   "hand-cuts"));
 }
 
 }  // namespace kerf::cli

@@ -30,6 +30,8 @@ constexpr absl::string_view kUsage =
     "       kerf path hand|vertices|edges|face-plane MESH --out PATH.json [--seed N]\n"
     "                [--duration S] [--rate HZ]\n"
     "       kerf experiment lattice-cut|progressive-cases|live-cut [--json]\n"
+    "       kerf experiment hand-cuts [--meshes FILE,...] [--seeds N] [--check every|end]\n"
+    "                [--json]\n"
     "       kerf experiment tradeoff [--resolutions N,N,...] [--reference-resolution N]\n"
     "                [--seconds S] [--json]\n"
     "       kerf experiment stability [--liver FILE] [--scenes NAME,...] [--slow-down X]\n"

@@ -37,10 +37,9 @@ std::optional<double> BladeCrossings::TipPathThroughEdge(const BladePose& from, 
 }
 
 absl::StatusOr<BladeCrossings> BladeCrossings::Create(const mesh::TetMesh* mesh, double cell_size) {
-  const double margin = 0.25 * cell_size;
-  absl::StatusOr<TetGrid> grid = TetGrid::Build(*mesh, cell_size, margin);
+  absl::StatusOr<TetGrid> grid = TetGrid::Build(*mesh, cell_size, 0.25 * cell_size);
   if (!grid.ok()) return grid.status();
-  return BladeCrossings(mesh, *std::move(grid), margin);
+  return BladeCrossings(mesh, *std::move(grid));
 }
 
 Eigen::Vector3d BladeCrossings::MovedSincePrevious(VertexId v) const {
@@ -66,30 +65,18 @@ std::vector<TetId> BladeCrossings::Near(const Eigen::Vector3d& low,
 }
 
 Crossings BladeCrossings::Find(
-    const BladePose& from, const BladePose& to,
+    const BladePose& from, const BladePose& to, const std::vector<mesh::TetVertices>& tets,
     const std::function<bool(VertexId, VertexId)>& skip_edge,
-    const std::function<bool(const std::array<VertexId, 3>&)>& skip_face) {
-  double farthest = 0;
-  for (const auto& [v, then] : previous_) {
-    if (mesh_->IsAlive(VertexId(v))) {
-      farthest = std::max(farthest, (mesh_->current_position(VertexId(v)) - then).norm());
-    }
-  }
+    const std::function<bool(const std::array<VertexId, 3>&)>& skip_face) const {
   const auto motion = [&](VertexId v) {
     const Eigen::Vector3d& x = mesh_->current_position(v);
     return geometry::Motion{x - MovedSincePrevious(v), x};
   };
   const geometry::Motion tip{from.tip, to.tip}, heel{from.heel, to.heel};
-  Eigen::Vector3d low = from.tip.cwiseMin(from.heel).cwiseMin(to.tip).cwiseMin(to.heel);
-  Eigen::Vector3d high = from.tip.cwiseMax(from.heel).cwiseMax(to.tip).cwiseMax(to.heel);
-  low.array() -= farthest;
-  high.array() += farthest;
   Crossings found;
-  found.near = Near(low, high);
   absl::flat_hash_set<std::uint64_t> tested_edges;
   absl::flat_hash_set<std::array<VertexId, 3>> tested_faces;
-  for (const TetId t : found.near) {
-    const mesh::TetVertices v = mesh_->tet(t);
+  for (const mesh::TetVertices& v : tets) {
     for (const auto& [i, j] : mesh::kTetEdges) {
       const VertexId lo = Index(v[i]) < Index(v[j]) ? v[i] : v[j];
       const VertexId hi = lo == v[i] ? v[j] : v[i];
@@ -114,12 +101,11 @@ Crossings BladeCrossings::Find(
 }
 
 std::vector<FaceCrossing> BladeCrossings::FacesCrossedBy(
-    const BladePose& pose,
+    const BladePose& pose, const std::vector<mesh::TetVertices>& tets,
     const std::function<bool(const std::array<VertexId, 3>&)>& skip_face) const {
   std::vector<FaceCrossing> crossed;
   absl::flat_hash_set<std::array<VertexId, 3>> tested;
-  for (const TetId t : Near(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel))) {
-    const mesh::TetVertices v = mesh_->tet(t);
+  for (const mesh::TetVertices& v : tets) {
     for (const auto& f : mesh::kTetFaces) {
       std::array<VertexId, 3> face = {v[f[0]], v[f[1]], v[f[2]]};
       std::sort(face.begin(), face.end());
@@ -134,16 +120,12 @@ std::vector<FaceCrossing> BladeCrossings::FacesCrossedBy(
   return crossed;
 }
 
-absl::Status BladeCrossings::Remember(const BladePose& pose) {
+absl::Status BladeCrossings::Remember(const std::vector<VertexId>& vertices) {
   previous_.clear();
-  if (absl::Status s = grid_.RefreshTopology(); !s.ok()) return s;
-  for (const TetId t : Near(pose.tip.cwiseMin(pose.heel).array() - margin_,
-                            pose.tip.cwiseMax(pose.heel).array() + margin_)) {
-    for (const VertexId v : mesh_->tet(t)) {
-      previous_.try_emplace(Index(v), mesh_->current_position(v));
-    }
+  for (const VertexId v : vertices) {
+    if (mesh_->IsAlive(v)) previous_.try_emplace(Index(v), mesh_->current_position(v));
   }
-  return absl::OkStatus();
+  return grid_.RefreshTopology();
 }
 
 bool BladeCrossings::BladeMeets(const mesh::TetVertices& v, const BladePose& pose) const {

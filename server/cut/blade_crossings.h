@@ -32,7 +32,6 @@ struct FaceCrossing {
 struct Crossings {
   std::vector<EdgeCrossing> edges;
   std::vector<FaceCrossing> faces;
-  std::vector<mesh::TetId> near;  // the live tets whose box meets the swept surface's
 };
 
 class BladeCrossings {
@@ -40,33 +39,35 @@ class BladeCrossings {
   // `cell_size` (m): the grid's, a mean edge length is a good choice. The mesh must outlive it.
   static absl::StatusOr<BladeCrossings> Create(const mesh::TetMesh* mesh, double cell_size);
 
-  // The crossings of the blade moving from `from` to `to`, each edge and face once; edges and
-  // faces `skip` names are not tested (they are cut already). O(tets near the swept surface).
+  // The crossings of the blade moving from `from` to `to` with the edges and faces of `tets`
+  // (corners of live vertices), each edge and face once; those `skip` names are not tested
+  // (they are cut already). O(tets).
   Crossings Find(const BladePose& from, const BladePose& to,
+                 const std::vector<mesh::TetVertices>& tets,
                  const std::function<bool(mesh::VertexId, mesh::VertexId)>& skip_edge,
-                 const std::function<bool(const std::array<mesh::VertexId, 3>&)>& skip_face);
+                 const std::function<bool(const std::array<mesh::VertexId, 3>&)>& skip_face) const;
 
-  // The faces the blade at `pose` crosses (its edge, tip to heel), but those `skip` names.
+  // The faces of `tets` the blade at `pose` crosses (its edge, tip to heel), but those `skip`
+  // names.
   std::vector<FaceCrossing> FacesCrossedBy(
-      const BladePose& pose,
+      const BladePose& pose, const std::vector<mesh::TetVertices>& tets,
       const std::function<bool(const std::array<mesh::VertexId, 3>&)>& skip_face) const;
 
-  // Keeps the current positions of the vertices near `pose`, for the next Find. Call after the
-  // pose was applied (the grid learns the tets it made).
-  absl::Status Remember(const BladePose& pose);
+  // Keeps the current positions of `vertices` (those near the blade), for the next Find, and
+  // lets the grid learn the tets the mesh added and removed. Call after a pose was applied.
+  absl::Status Remember(const std::vector<mesh::VertexId>& vertices);
 
   // Whether the blade at `pose` meets the tet (its inside or boundary), on current positions.
   bool BladeMeets(const mesh::TetVertices& tet, const BladePose& pose) const;
 
-  // Live tets whose box may meet the box [low, high].
+  // Live tets whose box meets the box [low, high] (on current positions).
   std::vector<mesh::TetId> Near(const Eigen::Vector3d& low, const Eigen::Vector3d& high) const;
 
   // After the mesh deformed (a physics step). O(vertices).
   absl::Status MeshDeformed() { return grid_.Refresh(); }
 
  private:
-  BladeCrossings(const mesh::TetMesh* mesh, TetGrid grid, double margin)
-      : mesh_(mesh), grid_(std::move(grid)), margin_(margin) {}
+  BladeCrossings(const mesh::TetMesh* mesh, TetGrid grid) : mesh_(mesh), grid_(std::move(grid)) {}
 
   // Where the tip's path from `from` to `to` passes through the edge, as a fraction from `low`,
   // when the blade's edge does not cross it (the blade sweeping in the edge's plane, or its tip
@@ -79,7 +80,6 @@ class BladeCrossings {
 
   const mesh::TetMesh* mesh_;
   TetGrid grid_;
-  double margin_;  // m: vertices within it of the blade are remembered
   absl::flat_hash_map<std::uint32_t, Eigen::Vector3d> previous_;  // by vertex index
 };
 

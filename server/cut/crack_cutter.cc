@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "base/check.h"
 #include "geometry/point_triangle_distance.h"
+#include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
 
 namespace kerf::cut {
@@ -15,27 +16,30 @@ using mesh::Index;
 using mesh::TetId;
 using mesh::VertexId;
 
-constexpr VertexId kNoVertex{0xffffffffu};
-
-// A cone's apex is kept at least this far (barycentric) from the tet's faces.
-constexpr double kApexMargin = 0.1;
-
 std::uint64_t MakeEdgeKey(VertexId a, VertexId b) {
   const std::uint64_t lo = std::min(Index(a), Index(b)), hi = std::max(Index(a), Index(b));
   return lo << 32 | hi;
 }
 
+std::uint64_t ApexPlace(TetId unit) { return (std::uint64_t{1} << 63) | Index(unit); }
+
+void SortUnique(std::vector<TetId>* v) {
+  std::sort(v->begin(), v->end());
+  v->erase(std::unique(v->begin(), v->end()), v->end());
+}
+
 }  // namespace
 
 absl::StatusOr<CrackCutter> CrackCutter::Create(mesh::TetMesh* mesh, double cell_size,
-                                                const BladeLimits& limits, double snap_fraction) {
+                                                const BladeLimits& limits, CutMode mode,
+                                                double snap_fraction) {
   if (!(snap_fraction >= 0 && snap_fraction < 0.5)) {
     return absl::InvalidArgumentError(
         absl::StrCat("the snap fraction must be in [0, 0.5), got ", snap_fraction));
   }
   absl::StatusOr<BladeCrossings> crossings = BladeCrossings::Create(mesh, cell_size);
   if (!crossings.ok()) return crossings.status();
-  return CrackCutter(mesh, *std::move(crossings), limits,
+  return CrackCutter(mesh, *std::move(crossings), limits, mode,
                      std::max(snap_fraction, kMinSnapFraction));
 }
 
@@ -53,41 +57,123 @@ std::vector<MadeVertex> CrackCutter::TakeMadeVertices() {
   return made;
 }
 
+TetId CrackCutter::UnitOf(TetId t) const {
+  const auto it = owner_.find(t);
+  return it == owner_.end() ? t : it->second;
+}
+
+mesh::TetVertices CrackCutter::CornersOf(TetId unit) const {
+  if (const auto it = open_.find(unit); it != open_.end()) return it->second.corners;
+  mesh::TetVertices corners = mesh_->tet(unit);
+  for (VertexId& v : corners) v = parting_.Origin(v);
+  return corners;
+}
+
+std::vector<TetId> CrackCutter::UnitsNear(const Eigen::Vector3d& low,
+                                          const Eigen::Vector3d& high) const {
+  std::vector<TetId> units = crossings_.Near(low, high);
+  for (TetId& t : units) t = UnitOf(t);
+  SortUnique(&units);
+  return units;
+}
+
+std::vector<TetId> CrackCutter::UnitsAround(const std::vector<VertexId>& origins) const {
+  std::vector<TetId> units;
+  for (const TetId t : parting_.TetsAround(*mesh_, origins.front())) {
+    const TetId unit = UnitOf(t);
+    const mesh::TetVertices corners = CornersOf(unit);
+    if (std::all_of(origins.begin(), origins.end(),
+                    [&](VertexId o) { return mesh::TetHasVertex(corners, o); })) {
+      units.push_back(unit);
+    }
+  }
+  SortUnique(&units);
+  return units;
+}
+
+std::vector<mesh::TetVertices> CrackCutter::CornersOfAll(const std::vector<TetId>& units) const {
+  std::vector<mesh::TetVertices> corners;
+  for (const TetId u : units) corners.push_back(CornersOf(u));
+  return corners;
+}
+
 absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
   if (absl::Status valid = ValidatePose(pose, previous_ ? &*previous_ : nullptr, limits_);
       !valid.ok()) {
     return valid;
   }
   if (previous_) {
+    const BladePose& from = *previous_;
+    const std::vector<TetId> near =
+        UnitsNear(from.tip.cwiseMin(from.heel).cwiseMin(pose.tip).cwiseMin(pose.heel),
+                  from.tip.cwiseMax(from.heel).cwiseMax(pose.tip).cwiseMax(pose.heel));
     const Crossings found = crossings_.Find(
-        *previous_, pose,
+        from, pose, CornersOfAll(near),
         [&](VertexId a, VertexId b) { return edge_points_.contains(MakeEdgeKey(a, b)); },
         [&](const std::array<VertexId, 3>& face) { return face_points_.contains(face); });
-    std::vector<TetId> touched = RecordCrossings(found);
-    SnapVerticesNear(*previous_, pose, found.near, &touched);
+    std::vector<TetId> touched;
+    RecordCrossings(found, &touched);
+    SnapVerticesNear(from, pose, near, &touched);
     Join(touched);
-    SplitReadyGroups(&pose);
+    if (mode_ == CutMode::kDeferred) {
+      SplitReadyGroups(&pose);
+    } else {
+      absl::flat_hash_map<TetId, BladeIn> blade;
+      BladeFaceCrossings faces;
+      for (const TetId u : UnitsNear(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel))) {
+        if (std::optional<BladeIn> in = BladeInUnit(u, pose, &faces)) blade[u] = *std::move(in);
+      }
+      // Split: the units with new points, those the blade is in, and those it was in.
+      touched.insert(touched.end(), blade_units_.begin(), blade_units_.end());
+      blade_units_.clear();
+      for (const auto& [u, in] : blade) {
+        touched.push_back(u);
+        blade_units_.push_back(u);
+      }
+      SplitUnits(std::move(touched), blade);
+      CloseUnitsTheBladeLeft();
+    }
   }
   previous_ = pose;
-  return crossings_.Remember(pose);
+  std::vector<VertexId> near_blade;
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(0.1 * (pose.heel - pose.tip).norm());
+  for (const TetId t : crossings_.Near(pose.tip.cwiseMin(pose.heel) - margin,
+                                       pose.tip.cwiseMax(pose.heel) + margin)) {
+    for (const VertexId v : mesh_->tet(t)) {
+      near_blade.push_back(v);
+      near_blade.push_back(parting_.Origin(v));
+    }
+  }
+  last_pose_ = {};
+  last_pose_.open_tets = open_.size();
+  for (const auto& [u, open] : open_) last_pose_.temporary_tets += open.pieces.size();
+  return crossings_.Remember(near_blade);
 }
 
 void CrackCutter::Finish() {
+  std::vector<TetId> touched;
   if (previous_) {
     // The crack reaches where the blade was: its crossings of faces are where the crack ends.
-    Crossings at_blade;
-    at_blade.faces = crossings_.FacesCrossedBy(
-        *previous_, [&](const std::array<VertexId, 3>& f) { return face_points_.contains(f); });
-    Join(RecordCrossings(at_blade));
+    const BladePose& at = *previous_;
+    Crossings crossed;
+    crossed.faces = crossings_.FacesCrossedBy(
+        at, CornersOfAll(UnitsNear(at.tip.cwiseMin(at.heel), at.tip.cwiseMax(at.heel))),
+        [&](const std::array<VertexId, 3>& f) { return face_points_.contains(f); });
+    RecordCrossings(crossed, &touched);
   }
-  SplitReadyGroups(nullptr);
+  Join(touched);
+  if (mode_ == CutMode::kProgressive) {
+    touched.insert(touched.end(), blade_units_.begin(), blade_units_.end());
+    blade_units_.clear();
+    SplitUnits(std::move(touched), {});
+  }
+  SplitReadyGroups(nullptr);  // progressive: every group closes
   previous_.reset();
 }
 
-std::vector<TetId> CrackCutter::RecordCrossings(const Crossings& found) {
-  std::vector<TetId> touched;
+void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* touched) {
   for (const EdgeCrossing& c : found.edges) {
-    RecordEdgeCrossing(c.low, c.high, c.fraction, &touched);
+    RecordEdgeCrossing(c.low, c.high, c.fraction, touched);
   }
   for (const FaceCrossing& c : found.faces) {
     if (face_points_.contains(c.face)) continue;
@@ -96,22 +182,20 @@ std::vector<TetId> CrackCutter::RecordCrossings(const Crossings& found) {
     b.maxCoeff(&largest);
     b.minCoeff(&smallest);
     if (b[largest] > 1 - snap_fraction_) {
-      Snap(c.face[largest], &touched);
+      Snap(c.face[largest], touched);
     } else if (b[smallest] < snap_fraction_) {
       // Beside the edge opposite the smallest weight: that edge's crossing.
       const int i = (smallest + 1) % 3, j = (smallest + 2) % 3;
       VertexId low = c.face[i], high = c.face[j];
       double fraction = b[j] / (b[i] + b[j]);
       if (Index(high) < Index(low)) std::swap(low, high), fraction = 1 - fraction;
-      RecordEdgeCrossing(low, high, fraction, &touched);
+      RecordEdgeCrossing(low, high, fraction, touched);
     } else {
       face_points_[c.face] = {b};
-      for (const TetId t : mesh_->TetsAroundFace(c.face[0], c.face[1], c.face[2])) {
-        touched.push_back(t);
-      }
+      const std::vector<TetId> units = UnitsAround({c.face[0], c.face[1], c.face[2]});
+      touched->insert(touched->end(), units.begin(), units.end());
     }
   }
-  return touched;
 }
 
 void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fraction,
@@ -124,15 +208,16 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
     Snap(high, touched);
   } else {
     edge_points_[key] = {fraction};
-    for (const TetId t : mesh_->TetsAroundEdge(low, high)) touched->push_back(t);
+    const std::vector<TetId> units = UnitsAround({low, high});
+    touched->insert(touched->end(), units.begin(), units.end());
   }
 }
 
 void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
-                                   const std::vector<TetId>& near, std::vector<TetId>* touched) {
+                                   const std::vector<TetId>& units, std::vector<TetId>* touched) {
   absl::flat_hash_set<VertexId> seen;
-  for (const TetId t : near) {
-    const mesh::TetVertices& corners = mesh_->tet(t);
+  for (const TetId u : units) {
+    const mesh::TetVertices corners = CornersOf(u);
     double edges = 0;
     for (const auto& [i, j] : mesh::kTetEdges) {
       edges += (mesh_->current_position(corners[i]) - mesh_->current_position(corners[j])).norm();
@@ -152,15 +237,60 @@ void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
 void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {
   if (!on_crack_.insert(v).second) return;
   ++statistics_.snapped_vertices;
-  for (const TetId t : mesh_->TetsAround(v)) touched->push_back(t);
+  const std::vector<TetId> units = UnitsAround({v});
+  touched->insert(touched->end(), units.begin(), units.end());
 }
 
-void CrackCutter::Join(const std::vector<TetId>& tets) {
-  for (const TetId t : tets) {
+std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const BladePose& pose,
+                                                             BladeFaceCrossings* faces) const {
+  const mesh::TetVertices corners = CornersOf(unit);
+  std::array<Eigen::Vector3d, 4> x;
+  for (int k = 0; k < 4; ++k) x[k] = mesh_->current_position(corners[k]);
+  BladeIn in;
+  bool meets = geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip) ||
+               geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.heel);
+  double first = 1, last = 0;  // the blade's chord through the tet, along it from the tip
+  for (const auto& f : mesh::kTetFaces) {
+    // Each face's crossing is found once, on its vertices in key order, so the two tets at it
+    // agree on it.
+    const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+    auto [at, inserted] = faces->try_emplace(key);
+    if (inserted) {
+      at->second = geometry::IntersectSegmentTriangle(
+          pose.tip, pose.heel, mesh_->current_position(key[0]), mesh_->current_position(key[1]),
+          mesh_->current_position(key[2]));
+    }
+    const auto& crossing = at->second;
+    if (!crossing) continue;
+    meets = true;
+    first = std::min(first, crossing->t);
+    last = std::max(last, crossing->t);
+    if (!face_points_.contains(key) && crossing->barycentric.minCoeff() >= kMinTemporaryWeight) {
+      in.faces[key] = crossing->barycentric;
+    }
+  }
+  if (!meets) return std::nullopt;
+  Eigen::Vector3d point = 0.25 * (x[0] + x[1] + x[2] + x[3]);
+  if (geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip)) {
+    point = pose.tip;
+  } else if (first <= last) {
+    point = pose.tip + 0.5 * (first + last) * (pose.heel - pose.tip);
+  }
+  Eigen::Matrix3d m;
+  for (int k = 0; k < 3; ++k) m.col(k) = x[k + 1] - x[0];
+  const Eigen::Vector3d w = m.fullPivLu().solve(point - x[0]);
+  in.apex = PulledInside({1 - w.sum(), w.x(), w.y(), w.z()});
+  return in;
+}
+
+// Deferred groups.
+
+void CrackCutter::Join(const std::vector<TetId>& units) {
+  for (const TetId t : units) {
     if (group_of_.try_emplace(t, t).second) members_[t] = {t};
   }
-  for (std::size_t i = 1; i < tets.size(); ++i) {
-    TetId a = group_of_.at(tets[0]), b = group_of_.at(tets[i]);
+  for (std::size_t i = 1; i < units.size(); ++i) {
+    TetId a = group_of_.at(units[0]), b = group_of_.at(units[i]);
     if (a == b) continue;
     if (members_.at(a).size() < members_.at(b).size()) std::swap(a, b);
     std::vector<TetId> moved = std::move(members_.at(b));
@@ -176,7 +306,7 @@ void CrackCutter::SplitReadyGroups(const BladePose* pose) {
   for (const auto& [root, members] : members_) {
     const bool blade_in =
         pose != nullptr && std::any_of(members.begin(), members.end(), [&](TetId t) {
-          return crossings_.BladeMeets(mesh_->tet(t), *pose);
+          return crossings_.BladeMeets(CornersOf(t), *pose);
         });
     if (!blade_in) ready.push_back(root);
   }
@@ -185,158 +315,46 @@ void CrackCutter::SplitReadyGroups(const BladePose* pose) {
     std::vector<TetId> group = std::move(members_.at(root));
     members_.erase(root);
     for (const TetId t : group) group_of_.erase(t);
-    std::sort(group.begin(), group.end());
-    SplitGroup(group);
+    if (mode_ == CutMode::kDeferred) SplitUnits(group, {});
+    CloseUnits(group);
   }
 }
 
-void CrackCutter::SplitGroup(const std::vector<TetId>& group) {
-  std::vector<VertexId> on_new_crack;
-  for (const TetId t : group) {
-    KERF_CHECK(mesh_->IsAlive(t));
-    const mesh::TetVertices corners = mesh_->tet(t);
-    const TetCrack crack = MakeTetCrack(corners, PointsOf(corners));
-    std::optional<CrackSplit> split = SplitWithoutApex(
-        crack, [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); });
-    if (!split) split = SplitAsCone(crack, MakeApex(crack));
-    for (const auto& face : split->crack_faces) {
-      crack_.insert(MakeFaceKey(face[0], face[1], face[2]));
-      on_new_crack.insert(on_new_crack.end(), face.begin(), face.end());
-    }
-    if (split->kind == CrackSplitKind::kWhole) continue;
-    if (!MadeByCut(t)) ++statistics_.cut_tets;
-    ++statistics_.tets_by_case[static_cast<std::size_t>(split->cut_case)];
-    Replace(t, split->tets);
+void CrackCutter::CloseUnitsTheBladeLeft() {
+  absl::flat_hash_set<TetId> with_blade;
+  for (const TetId u : blade_units_) {
+    if (const auto it = group_of_.find(u); it != group_of_.end()) with_blade.insert(it->second);
   }
-  // Points whose edges and faces are split are vertices now.
-  absl::erase_if(edge_points_, [&](const auto& e) { return e.second.vertex != kNoVertex; });
-  absl::erase_if(face_points_, [&](const auto& f) { return f.second.vertex != kNoVertex; });
-  std::sort(on_new_crack.begin(), on_new_crack.end());
-  on_new_crack.erase(std::unique(on_new_crack.begin(), on_new_crack.end()), on_new_crack.end());
-  const Parting parting = PartVertices(mesh_, on_new_crack, &crack_);
-  for (const auto& [old_tet, new_tet] : parting.replaced) {
-    source_tet_[new_tet] = SourceTet(old_tet);
-    source_tet_.erase(old_tet);
-    // A waiting tet keeps its place in its group.
-    if (const auto it = group_of_.find(old_tet); it != group_of_.end()) {
-      const TetId joined = it->second;
-      group_of_.erase(it);
-      group_of_[new_tet] = joined;
-      std::vector<TetId>& members = members_.at(joined);
-      std::replace(members.begin(), members.end(), old_tet, new_tet);
+  std::vector<TetId> closing;
+  for (const auto& [root, members] : members_) {
+    if (!with_blade.contains(root)) closing.push_back(root);
+  }
+  for (const TetId root : closing) {
+    std::vector<TetId> group = std::move(members_.at(root));
+    members_.erase(root);
+    for (const TetId t : group) group_of_.erase(t);
+    CloseUnits(group);
+  }
+  // Units the blade passed with no point of their own.
+  std::vector<TetId> passed;
+  for (const auto& [u, open] : open_) {
+    if (!group_of_.contains(u) &&
+        std::find(blade_units_.begin(), blade_units_.end(), u) == blade_units_.end()) {
+      passed.push_back(u);
     }
   }
-  for (const VertexCopy& c : parting.copies) {
-    parted_from_[c.copy] = PartedFrom(c.from);
-    if (on_crack_.contains(c.from)) on_crack_.insert(c.copy);
-    made_vertices_.push_back({c.copy, {c.from, c.from, c.from, c.from}, {1, 0, 0, 0}});
-    ++statistics_.parted_vertices;
-  }
+  CloseUnits(passed);
 }
 
-std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners) {
-  std::array<FacePoints, 4> points;
-  for (int k = 0; k < 4; ++k) {
-    FacePoints& p = points[k];
-    for (int j = 0; j < 3; ++j) p.corners[j] = corners[mesh::kTetFaces[k][j]];
-    for (int j = 0; j < 3; ++j) {
-      const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
-      if (edge_points_.contains(MakeEdgeKey(a, b))) p.on_edge[j] = EdgePointVertex(a, b);
-      p.corner_on_crack[j] = on_crack_.contains(p.corners[j]);
-    }
-    const FaceKey key = MakeFaceKey(p.corners[0], p.corners[1], p.corners[2]);
-    if (!face_points_.contains(key) && NeedsHub(p)) {
-      // The hub: the middle of the three edge points, on the face's vertices in key order.
-      Eigen::Vector3d weights = Eigen::Vector3d::Zero();
-      for (int j = 0; j < 3; ++j) {
-        const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
-        const EdgePoint& e = edge_points_.at(MakeEdgeKey(a, b));
-        const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
-        for (int i = 0; i < 3; ++i) {
-          if (key[i] == low) weights[i] += (1 - e.fraction) / 3;
-          if (key[i] == high) weights[i] += e.fraction / 3;
-        }
-      }
-      face_points_[key] = {weights};
-    }
-    if (face_points_.contains(key)) p.inside = FacePointVertex(key);
+void CrackCutter::CloseUnits(const std::vector<TetId>& units) {
+  for (const TetId u : units) {
+    const auto it = open_.find(u);
+    if (it == open_.end()) continue;
+    for (const TetId p : it->second.pieces) owner_.erase(p);
+    open_.erase(it);
+    // Its apex, if it has one, is an ordinary vertex now.
+    temporary_.erase(ApexPlace(u));
   }
-  return points;
-}
-
-VertexId CrackCutter::EdgePointVertex(VertexId a, VertexId b) {
-  EdgePoint& e = edge_points_.at(MakeEdgeKey(a, b));
-  if (e.vertex == kNoVertex) {
-    const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
-    e.vertex = MakeVertex({low, high, low, low}, {1 - e.fraction, e.fraction, 0, 0});
-  }
-  return e.vertex;
-}
-
-VertexId CrackCutter::FacePointVertex(const FaceKey& key) {
-  FacePoint& f = face_points_.at(key);
-  if (f.vertex == kNoVertex) {
-    const Eigen::Vector3d& b = f.barycentric;
-    f.vertex = MakeVertex({key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0});
-  }
-  return f.vertex;
-}
-
-VertexId CrackCutter::MakeApex(const TetCrack& crack) {
-  const mesh::TetVertices& c = crack.corners;
-  Eigen::Vector4d weights = Eigen::Vector4d::Constant(0.25);
-  const std::vector<VertexId> points = TracePoints(crack);
-  if (HasInnerCrack(crack)) {
-    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-    for (const VertexId v : points) middle += mesh_->rest_position(v);
-    middle /= static_cast<double>(points.size());
-    Eigen::Matrix3d m;
-    for (int k = 0; k < 3; ++k)
-      m.col(k) = mesh_->rest_position(c[k + 1]) - mesh_->rest_position(c[0]);
-    const Eigen::Vector3d w = m.fullPivLu().solve(middle - mesh_->rest_position(c[0]));
-    const Eigen::Vector4d at(1 - w.sum(), w.x(), w.y(), w.z());
-    // Pulled towards the tet's middle until every weight is at least the margin.
-    double pull = 0;
-    for (int k = 0; k < 4; ++k) {
-      if (at[k] < kApexMargin) pull = std::max(pull, (kApexMargin - at[k]) / (0.25 - at[k]));
-    }
-    weights = at + std::min(pull, 1.0) * (Eigen::Vector4d::Constant(0.25) - at);
-  }
-  return MakeVertex(c, weights);
-}
-
-VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& from,
-                                 const Eigen::Vector4d& weights) {
-  Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 4; ++k) {
-    if (weights[k] == 0) continue;
-    rest += weights[k] * mesh_->rest_position(from[k]);
-    current += weights[k] * mesh_->current_position(from[k]);
-  }
-  const VertexId v = mesh_->AddVertex(rest, current);
-  made_vertices_.push_back({v, from, weights});
-  return v;
-}
-
-std::vector<TetId> CrackCutter::Replace(TetId t, const std::vector<mesh::TetVertices>& pieces) {
-  const TetId source = SourceTet(t);
-  if (MadeByCut(t)) --statistics_.new_tets;
-  source_tet_.erase(t);
-  KERF_CHECK(mesh_->RemoveTet(t).ok());
-  std::vector<TetId> made;
-  for (mesh::TetVertices piece : pieces) {
-    const double volume =
-        geometry::SignedVolume(mesh_->rest_position(piece[0]), mesh_->rest_position(piece[1]),
-                               mesh_->rest_position(piece[2]), mesh_->rest_position(piece[3]));
-    KERF_CHECK(volume != 0);
-    if (volume < 0) std::swap(piece[2], piece[3]);
-    const absl::StatusOr<TetId> added = mesh_->AddTet(piece);
-    KERF_CHECK(added.ok());
-    source_tet_[*added] = source;
-    ++statistics_.new_tets;
-    made.push_back(*added);
-  }
-  return made;
 }
 
 }  // namespace kerf::cut

@@ -7,12 +7,19 @@
 // first crossing of the tip's path: where the crack ends), and the vertices the crack passes
 // through. Snapping is decided once per crossing: one within `snap_fraction` of an edge's length
 // from a corner (of a face's, barycentric, from a corner, or from an edge, where it becomes that
-// edge's point) is taken at the corner, which is then on the crack. Points are kept as weights
-// on their edge or face until their tets split, so a crossing never makes a dangling vertex.
+// edge's point), and a vertex that near the swept surface, is taken at the corner, which is then
+// on the crack. Points are kept as weights until a split uses them. Edges and faces are named by
+// their vertices' origins (cut/star_parting.h), so the two lips of a crack share their points.
 //
-// The tets that share points form groups; a group splits once the blade meets none of its tets
-// (deferred cutting), or when the blade is withdrawn. After a group splits, the vertices of its
-// crack faces are parted where the crack separates their tets (cut/star_parting.h).
+// The tets that share points form groups. Progressive (the default): after every pose, each tet
+// with new points, and each the blade is or was in, is split at once from its own corners (an
+// open tet); while the blade is in it the blade's crossings of its faces are points too and the
+// crack reaches the blade (a cone from the tip, or from the middle of the blade's chord), the
+// same points moving with the blade. A group closes once the blade meets none of its tets: their
+// pieces are then tets of their own. Deferred: a group splits once the blade meets none of its
+// tets. Either way, withdrawing the blade makes its
+// crossings of faces points where the crack ends, and after every split the vertices of the
+// crack are parted where it separates their tets.
 #pragma once
 
 #include <optional>
@@ -26,12 +33,18 @@
 #include "cut/crack_split.h"
 #include "cut/cutter.h"
 #include "cut/star_parting.h"
+#include "geometry/segment_triangle_intersection.h"
 #include "mesh/tet_mesh.h"
 
 namespace kerf::cut {
 
 // Crossings closer than this to a corner are always taken at it, whatever the snap fraction.
 inline constexpr double kMinSnapFraction = 0.01;
+inline constexpr double kDefaultCrackSnapFraction = 0.2;
+// The blade's crossing of a face is a temporary point unless it is within this (barycentric) of
+// the face's edges; temporary points are not snapped, so the crack follows the blade closely
+// (their thin pieces last only while the blade is in their tet).
+inline constexpr double kMinTemporaryWeight = 1e-3;
 
 class CrackCutter {
  public:
@@ -40,24 +53,26 @@ class CrackCutter {
   // is that). INVALID_ARGUMENT for a bad size or fraction.
   static absl::StatusOr<CrackCutter> Create(mesh::TetMesh* mesh, double cell_size,
                                             const BladeLimits& limits = {},
-                                            double snap_fraction = 0.2);
+                                            CutMode mode = CutMode::kProgressive,
+                                            double snap_fraction = kDefaultCrackSnapFraction);
 
   // Applies one pose. INVALID_ARGUMENT (and nothing changed) for a bad pose. The first pose only
   // places the blade.
   absl::Status ApplyPose(const BladePose& pose);
-  // The blade is withdrawn: every group still waiting splits.
+  // The blade is withdrawn: the crack ends where it was, and every tet still waiting splits.
   void Finish();
   absl::Status MeshDeformed() { return crossings_.MeshDeformed(); }
 
+  CutMode mode() const { return mode_; }
   const CutStatistics& statistics() const { return statistics_; }
   const PoseSummary& last_pose() const { return last_pose_; }
-  std::size_t waiting_tets() const { return group_of_.size(); }
+  // Tets with points not split for good.
+  std::size_t waiting_tets() const { return group_of_.size() + open_.size(); }
   mesh::TetId SourceTet(mesh::TetId t) const;
   bool MadeByCut(mesh::TetId t) const { return source_tet_.contains(t); }
-  mesh::VertexId PartedFrom(mesh::VertexId v) const {
-    const auto it = parted_from_.find(v);
-    return it == parted_from_.end() ? v : it->second;
-  }
+  // The vertex `v` is a copy of (v itself if it is none).
+  mesh::VertexId PartedFrom(mesh::VertexId v) const { return parting_.Origin(v); }
+  // The vertices made or moved since the last call that are still alive.
   std::vector<MadeVertex> TakeMadeVertices();
 
  private:
@@ -69,58 +84,108 @@ class CrackCutter {
     Eigen::Vector3d barycentric;  // on the face key's vertices
     mesh::VertexId vertex{0xffffffffu};
   };
+  // A tet the blade is in (progressive), standing in the mesh as its temporary pieces.
+  struct OpenTet {
+    mesh::TetVertices corners;  // origins
+    mesh::TetId source;         // the tissue's tet it came from
+    std::vector<mesh::TetId> pieces;
+    std::vector<FaceKey> crack;  // the crack faces its pieces hold
+  };
+  // The blade's points in a tet it meets now.
+  struct BladeIn {
+    absl::flat_hash_map<FaceKey, Eigen::Vector3d, FaceKeyHash> faces;  // crossings, barycentric
+    Eigen::Vector4d apex;  // the crack's point inside: the tip, or the chord's middle
+  };
   using EdgeKey = std::uint64_t;
 
   CrackCutter(mesh::TetMesh* mesh, BladeCrossings crossings, const BladeLimits& limits,
-              double snap_fraction)
+              CutMode mode, double snap_fraction)
       : mesh_(mesh),
         crossings_(std::move(crossings)),
         limits_(limits),
+        mode_(mode),
         snap_fraction_(snap_fraction) {}
 
-  // Records this pose's crossings as points (snapping them), returns the tets they touch.
-  std::vector<mesh::TetId> RecordCrossings(const Crossings& found);
-  // An edge crossing at `fraction` from `low`: a point, or its corner snapped. Adds the tets it
-  // touches.
+  // A tet as the crack sees it: a live tet, or an open tet (by its id before it opened).
+  mesh::TetId UnitOf(mesh::TetId t) const;
+  mesh::TetVertices CornersOf(mesh::TetId unit) const;  // origins
+  // The units with a tet whose box meets [low, high].
+  std::vector<mesh::TetId> UnitsNear(const Eigen::Vector3d& low, const Eigen::Vector3d& high) const;
+  std::vector<mesh::TetId> UnitsAround(const std::vector<mesh::VertexId>& origins) const;
+  std::vector<mesh::TetVertices> CornersOfAll(const std::vector<mesh::TetId>& units) const;
+
+  // Records crossings as points (snapping them); adds the units they touch.
+  void RecordCrossings(const Crossings& found, std::vector<mesh::TetId>* touched);
   void RecordEdgeCrossing(mesh::VertexId low, mesh::VertexId high, double fraction,
                           std::vector<mesh::TetId>* touched);
-  // Snaps the vertices of the `near` tets within the snap fraction of their tet's mean edge of
-  // the surface swept from `from` to `to`: the crack passes through them (this catches the
-  // blade through a vertex, along an edge or in a face's plane, where no edge is crossed inside).
+  // Snaps the corners of `units` within the snap fraction of their unit's mean edge of the
+  // surface swept from `from` to `to` (the blade through a vertex, along an edge or in a face's
+  // plane crosses no edge inside).
   void SnapVerticesNear(const BladePose& from, const BladePose& to,
-                        const std::vector<mesh::TetId>& near, std::vector<mesh::TetId>* touched);
+                        const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
-  void Join(const std::vector<mesh::TetId>& tets);
-  // Splits the groups the blade at `pose` meets none of (every group if null).
-  void SplitReadyGroups(const BladePose* pose);
-  void SplitGroup(const std::vector<mesh::TetId>& group);
-  // The points of the tet's faces, their vertices made as needed.
-  std::array<FacePoints, 4> PointsOf(const mesh::TetVertices& corners);
+  // The blade's crossings of faces at a pose, by face.
+  using BladeFaceCrossings =
+      absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>;
+  // The blade's points in the unit, if the blade at `pose` meets it (crosses a face, or has an
+  // end inside); `faces` keeps the crossings found, for the unit across each face.
+  std::optional<BladeIn> BladeInUnit(mesh::TetId unit, const BladePose& pose,
+                                     BladeFaceCrossings* faces) const;
+
+  // Splits the units (for good, or temporarily where `blade` has them), then parts the crack's
+  // vertices and forgets temporary points no split uses.
+  void SplitUnits(std::vector<mesh::TetId> units,
+                  const absl::flat_hash_map<mesh::TetId, BladeIn>& blade);
+  // Splits one unit; returns the origins of the vertices its pieces use.
+  std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade);
+  std::array<FacePoints, 4> PointsOf(const mesh::TetVertices& corners, const BladeIn* blade);
   mesh::VertexId EdgePointVertex(mesh::VertexId a, mesh::VertexId b);
   mesh::VertexId FacePointVertex(const FaceKey& key);
-  // The point strictly inside the tet a cone splits it from: the middle of the crack's trace
-  // points pulled inside, or the tet's middle.
-  mesh::VertexId MakeApex(const TetCrack& crack);
+  mesh::VertexId TemporaryVertex(std::uint64_t place, const std::array<mesh::VertexId, 4>& from,
+                                 const Eigen::Vector4d& weights);
+  // The apex of a cone for good: the middle of the crack's trace points pulled inside, or the
+  // tet's middle.
+  Eigen::Vector4d ApexWeights(const TetCrack& crack) const;
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& from,
                             const Eigen::Vector4d& weights);
-  // Replaces t by the pieces (oriented on rest positions); returns them.
-  std::vector<mesh::TetId> Replace(mesh::TetId t, const std::vector<mesh::TetVertices>& pieces);
+  // Puts `pieces` (oriented on rest positions) in place of the unit's tets.
+  std::vector<mesh::TetId> Replace(mesh::TetId unit, const std::vector<mesh::TetVertices>& pieces);
+  void Repart(const std::vector<mesh::VertexId>& origins);
+  void AddCrack(const FaceKey& key) { ++crack_[key]; }
+  void RemoveCrack(const FaceKey& key);
+
+  // The groups of units sharing points: they split together (deferred) and stay open together
+  // (progressive), so a unit split from its own faces never meets one split finer.
+  void Join(const std::vector<mesh::TetId>& units);
+  // Closes the groups the blade at `pose` meets none of (every group if null), splitting them
+  // first (deferred).
+  void SplitReadyGroups(const BladePose* pose);
+  // Progressive: closes the groups none of blade_units_ is in, and the open units in no group the
+  // blade is not in.
+  void CloseUnitsTheBladeLeft();
+  // Their pieces become units of their own.
+  void CloseUnits(const std::vector<mesh::TetId>& units);
 
   mesh::TetMesh* mesh_;
   BladeCrossings crossings_;
   BladeLimits limits_;
+  CutMode mode_;
   double snap_fraction_;
   std::optional<BladePose> previous_;
-  absl::flat_hash_map<EdgeKey, EdgePoint> edge_points_;
-  absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;
-  absl::flat_hash_set<mesh::VertexId> on_crack_;  // snapped corners, and their copies
-  CrackFaceSet crack_;
-  // Groups of tets with points, joined through shared points: each waiting tet's group (named
-  // by one of its tets) and each group's tets.
+  VertexParting parting_;
+  absl::flat_hash_map<EdgeKey, EdgePoint> edge_points_;               // by origins
+  absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;  // by origins
+  absl::flat_hash_set<mesh::VertexId> on_crack_;                      // origins
+  absl::flat_hash_map<FaceKey, int, FaceKeyHash> crack_;  // by origins, with how many mark it
+  absl::flat_hash_map<mesh::TetId, OpenTet> open_;
+  std::vector<mesh::TetId> blade_units_;  // the units the blade was in at the last pose
+  absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;  // temporary piece -> its open tet
+  // Temporary points by place (a face's key hash, or an open tet's id), and those used this pose.
+  absl::flat_hash_map<std::uint64_t, mesh::VertexId> temporary_;
+  absl::flat_hash_set<std::uint64_t> temporary_used_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> group_of_;
   absl::flat_hash_map<mesh::TetId, std::vector<mesh::TetId>> members_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> source_tet_;
-  absl::flat_hash_map<mesh::VertexId, mesh::VertexId> parted_from_;
   std::vector<MadeVertex> made_vertices_;
   CutStatistics statistics_;
   PoseSummary last_pose_;

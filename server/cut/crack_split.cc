@@ -216,6 +216,14 @@ std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
   return split;
 }
 
+Eigen::Vector4d PulledInside(const Eigen::Vector4d& w) {
+  double pull = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (w[k] < kApexMargin) pull = std::max(pull, (kApexMargin - w[k]) / (0.25 - w[k]));
+  }
+  return w + std::min(pull, 1.0) * (Eigen::Vector4d::Constant(0.25) - w);
+}
+
 CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {
   CrackSplit split;
   split.kind = CrackSplitKind::kCone;

@@ -56,4 +56,10 @@ std::optional<CrackSplit> SplitWithoutApex(
 // The cone from `apex`, a vertex strictly inside the tet, over its faces' triangles.
 CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
 
+// A cone's apex is kept at least this far (barycentric) from the tet's faces.
+inline constexpr double kApexMargin = 0.1;
+// Barycentric weights (summing to 1) moved towards the tet's middle until each is at least
+// kApexMargin.
+Eigen::Vector4d PulledInside(const Eigen::Vector4d& weights);
+
 }  // namespace kerf::cut

@@ -3,13 +3,11 @@
 #include <algorithm>
 #include <numeric>
 
-#include "absl/container/flat_hash_map.h"
 #include "base/check.h"
 
 namespace kerf::cut {
 namespace {
 
-using mesh::Index;
 using mesh::TetId;
 using mesh::VertexId;
 
@@ -26,60 +24,126 @@ FaceKey MakeFaceKey(VertexId a, VertexId b, VertexId c) {
   return key;
 }
 
-Parting PartVertices(mesh::TetMesh* mesh, const std::vector<VertexId>& vertices,
-                     CrackFaceSet* crack) {
-  Parting parting;
-  for (const VertexId v : vertices) {
-    if (!mesh->IsAlive(v)) continue;
-    const std::vector<TetId> star(mesh->TetsAround(v).begin(), mesh->TetsAround(v).end());
-    // Union of the tets through each face at v that two of them share and is not on the crack.
+std::vector<VertexId> VertexParting::Ids(VertexId origin) const {
+  std::vector<VertexId> ids = {origin};
+  if (const auto it = copies_.find(origin); it != copies_.end()) {
+    ids.insert(ids.end(), it->second.begin(), it->second.end());
+  }
+  return ids;
+}
+
+std::vector<TetId> VertexParting::TetsAround(const mesh::TetMesh& mesh, VertexId origin) const {
+  std::vector<TetId> tets;
+  for (const VertexId v : Ids(origin)) {
+    if (mesh.IsAlive(v))
+      tets.insert(tets.end(), mesh.TetsAround(v).begin(), mesh.TetsAround(v).end());
+  }
+  std::sort(tets.begin(), tets.end());
+  return tets;
+}
+
+PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<VertexId>& origins,
+                                     const std::function<bool(const FaceKey&)>& on_crack) {
+  PartingChanges changes;
+  std::vector<VertexId> todo;
+  for (const VertexId v : origins) todo.push_back(Origin(v));
+  std::sort(todo.begin(), todo.end());
+  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+  for (const VertexId o : todo) {
+    if (!mesh->IsAlive(o)) continue;
+    const std::vector<TetId> star = TetsAround(*mesh, o);
+    if (star.empty()) continue;
+    // Parts: tets joined through faces at o that are not on the crack.
     std::vector<int> parent(star.size());
     std::iota(parent.begin(), parent.end(), 0);
     absl::flat_hash_map<FaceKey, int, FaceKeyHash> first_with;
     for (int i = 0; i < static_cast<int>(star.size()); ++i) {
       const mesh::TetVertices& t = mesh->tet(star[i]);
       for (const auto& f : mesh::kTetFaces) {
-        const FaceKey key = MakeFaceKey(t[f[0]], t[f[1]], t[f[2]]);
-        if (std::find(key.begin(), key.end(), v) == key.end() || crack->contains(key)) continue;
+        const FaceKey key = OriginKey(t[f[0]], t[f[1]], t[f[2]]);
+        if (std::find(key.begin(), key.end(), o) == key.end() || on_crack(key)) continue;
         const auto [it, inserted] = first_with.try_emplace(key, i);
         if (!inserted) parent[Root(parent, i)] = Root(parent, it->second);
       }
     }
-    absl::flat_hash_map<int, std::vector<TetId>> parts;
-    for (int i = 0; i < static_cast<int>(star.size()); ++i) {
-      parts[Root(parent, i)].push_back(star[i]);
-    }
-    if (parts.size() < 2) continue;
-    std::vector<std::vector<TetId>> ordered;
-    for (auto& [root, tets] : parts) {
-      std::sort(tets.begin(), tets.end());
-      ordered.push_back(std::move(tets));
-    }
-    // The largest part keeps v (the lowest tet id breaks ties, so the result is deterministic).
-    std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) {
-      return a.size() != b.size() ? a.size() > b.size() : a.front() < b.front();
+    absl::flat_hash_map<int, std::vector<int>> by_root;
+    for (int i = 0; i < static_cast<int>(star.size()); ++i) by_root[Root(parent, i)].push_back(i);
+    std::vector<std::vector<int>> parts;
+    for (auto& [root, members] : by_root) parts.push_back(std::move(members));
+    std::sort(parts.begin(), parts.end(), [&](const auto& a, const auto& b) {
+      return a.size() != b.size() ? a.size() > b.size() : star[a.front()] < star[b.front()];
     });
-    for (std::size_t p = 1; p < ordered.size(); ++p) {
-      const VertexId copy = mesh->AddVertex(mesh->rest_position(v), mesh->current_position(v));
-      parting.copies.push_back({copy, v});
-      for (const TetId t : ordered[p]) {
-        mesh::TetVertices corners = mesh->tet(t);
-        for (const auto& f : mesh::kTetFaces) {
-          const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
-          if (!crack->contains(key)) continue;
-          FaceKey renamed = key;
-          std::replace(renamed.begin(), renamed.end(), v, copy);
-          if (renamed != key) crack->insert(MakeFaceKey(renamed[0], renamed[1], renamed[2]));
+    // The id each tet uses for o now.
+    const auto id_in = [&](int i) {
+      for (const VertexId v : mesh->tet(star[i])) {
+        if (Origin(v) == o) return v;
+      }
+      KERF_CHECK(false);
+      return o;
+    };
+    const std::vector<VertexId> ids = Ids(o);
+    std::vector<VertexId> assigned(parts.size(), VertexId(0xffffffffu));
+    absl::flat_hash_set<VertexId> taken = {o};
+    assigned[0] = o;
+    for (std::size_t p = 1; p < parts.size(); ++p) {
+      absl::flat_hash_map<VertexId, int> uses;
+      for (const int i : parts[p]) ++uses[id_in(i)];
+      int most = 0;
+      for (const auto& [id, n] : uses) {
+        if (!taken.contains(id) && (n > most || (n == most && id < assigned[p]))) {
+          most = n;
+          assigned[p] = id;
         }
-        std::replace(corners.begin(), corners.end(), v, copy);
-        KERF_CHECK(mesh->RemoveTet(t).ok());
+      }
+      for (const VertexId id : ids) {  // else a copy no part took, kept (and its state) if any
+        if (most == 0 && id != o && mesh->IsAlive(id) && !taken.contains(id)) {
+          assigned[p] = id;
+          most = 1;
+        }
+      }
+      if (most == 0) {
+        assigned[p] = mesh->AddVertex(mesh->rest_position(o), mesh->current_position(o));
+        origin_[assigned[p]] = o;
+        copies_[o].push_back(assigned[p]);
+        changes.made.push_back({assigned[p], o});
+      }
+      taken.insert(assigned[p]);
+    }
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      for (const int i : parts[p]) {
+        const VertexId now = id_in(i);
+        if (now == assigned[p]) continue;
+        mesh::TetVertices corners = mesh->tet(star[i]);
+        std::replace(corners.begin(), corners.end(), now, assigned[p]);
+        KERF_CHECK(mesh->RemoveTet(star[i]).ok());
         const absl::StatusOr<TetId> added = mesh->AddTet(corners);
         KERF_CHECK(added.ok());
-        parting.replaced.push_back({t, *added});
+        changes.replaced.push_back({star[i], *added});
       }
     }
+    for (const VertexId id : ids) {
+      if (id == o || taken.contains(id) || !mesh->IsAlive(id)) continue;
+      KERF_CHECK(mesh->TetsAround(id).empty());
+      KERF_CHECK(mesh->RemoveVertex(id).ok());
+      changes.removed.push_back(id);
+      std::vector<VertexId>& copies = copies_[o];
+      copies.erase(std::find(copies.begin(), copies.end(), id));
+    }
   }
-  return parting;
+  return changes;
+}
+
+bool VertexParting::RemoveIfUnused(mesh::TetMesh* mesh, VertexId origin) {
+  const std::vector<VertexId> ids = Ids(origin);
+  for (const VertexId v : ids) {
+    if (mesh->IsAlive(v) && !mesh->TetsAround(v).empty()) return false;
+  }
+  for (const VertexId v : ids) {
+    if (mesh->IsAlive(v)) KERF_CHECK(mesh->RemoveVertex(v).ok());
+    origin_.erase(v);
+  }
+  copies_.erase(origin);
+  return true;
 }
 
 }  // namespace kerf::cut

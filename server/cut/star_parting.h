@@ -1,15 +1,20 @@
-// Parting the vertices a crack separates. The tets around a vertex, joined through their faces
-// at it that are not crack faces, form parts; where there is more than one, the largest part
-// keeps the vertex and each other part gets a copy (same rest and current position), so the
-// crack opens there. A vertex on the crack's front (the crack ends at it) has one part and stays
-// whole. Parting one vertex never joins or separates the parts of another: two tets at v in
-// different parts share only crack faces at v.
+// The copies of vertices a crack parts. A vertex the crack runs through has a copy for each
+// part of its tets but one: the tets around it (and around its copies), joined through their
+// faces at it that are not crack faces, form parts. Faces and crack faces are compared by their
+// vertices' origins (a copy's origin is the vertex it was made from), so the parts are a
+// function of the crack alone: a crack face added later parts a vertex further; tets that were
+// rebuilt (a temporary split following the blade) are joined back to the parts they touch.
+//
+// Each part keeps one id: the largest keeps the origin, each other the copy most of its tets
+// already use, or a new copy at the same rest and current position. A copy no part uses any more
+// is removed. A vertex on the crack's front (the crack ends at it) has one part and stays whole.
 #pragma once
 
 #include <array>
 #include <functional>
 #include <vector>
 
+#include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
 #include "mesh/tet_mesh.h"
 
@@ -23,21 +28,46 @@ struct FaceKeyHash {
     return absl::HashOf(mesh::Index(k[0]), mesh::Index(k[1]), mesh::Index(k[2]));
   }
 };
+// Crack faces, by their vertices' origins.
 using CrackFaceSet = absl::flat_hash_set<FaceKey, FaceKeyHash>;
 
 struct VertexCopy {
   mesh::VertexId copy;
-  mesh::VertexId from;
+  mesh::VertexId from;  // its origin
 };
 
-struct Parting {
-  std::vector<VertexCopy> copies;
-  std::vector<std::pair<mesh::TetId, mesh::TetId>> replaced;  // old tet, the tet now in its place
+struct PartingChanges {
+  std::vector<VertexCopy> made;
+  std::vector<mesh::VertexId> removed;                        // copies no part uses
+  std::vector<std::pair<mesh::TetId, mesh::TetId>> replaced;  // old tet, the tet in its place
 };
 
-// Parts each of `vertices` (live) whose parts are more than one. `crack` gains the keys of the
-// crack faces renamed by a copy. O(stars of the vertices).
-Parting PartVertices(mesh::TetMesh* mesh, const std::vector<mesh::VertexId>& vertices,
-                     CrackFaceSet* crack);
+class VertexParting {
+ public:
+  // The vertex a copy was made from (v itself for a vertex that is no copy).
+  mesh::VertexId Origin(mesh::VertexId v) const {
+    const auto it = origin_.find(v);
+    return it == origin_.end() ? v : it->second;
+  }
+  // The origin and its live copies.
+  std::vector<mesh::VertexId> Ids(mesh::VertexId origin) const;
+  // The live tets using the origin or one of its copies.
+  std::vector<mesh::TetId> TetsAround(const mesh::TetMesh& mesh, mesh::VertexId origin) const;
+  // The key of a face by its vertices' origins.
+  FaceKey OriginKey(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) const {
+    return MakeFaceKey(Origin(a), Origin(b), Origin(c));
+  }
+
+  // Parts each of `origins` (or the origins of copies given) by the crack (`on_crack` of a face's
+  // origin key), rewriting the tets whose id for it changes. O(stars).
+  PartingChanges Repart(mesh::TetMesh* mesh, const std::vector<mesh::VertexId>& origins,
+                        const std::function<bool(const FaceKey&)>& on_crack);
+  // Removes the origin and its copies if no tet uses them; false if a tet does.
+  bool RemoveIfUnused(mesh::TetMesh* mesh, mesh::VertexId origin);
+
+ private:
+  absl::flat_hash_map<mesh::VertexId, mesh::VertexId> origin_;               // copy -> origin
+  absl::flat_hash_map<mesh::VertexId, std::vector<mesh::VertexId>> copies_;  // origin -> copies
+};
 
 }  // namespace kerf::cut

@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "google/protobuf/util/json_util.h"
 #include "kerf/v1/cut_report.pb.h"
@@ -175,7 +176,7 @@ TEST(KerfCli, CutReportsCoverageOfTheSweptSurface) {
   EXPECT_LE(hand.min_step_coverage(), 1);
   // The crack cutter cuts where the hand went, valid after every pose.
   const kerf::v1::CutReport crack = cut(dir + "/hand.json", " --check every --cutter crack");
-  EXPECT_EQ(crack.mode(), "crack, deferred");
+  EXPECT_EQ(crack.mode(), "crack, progressive");
   EXPECT_EQ(crack.invalid_poses(), 0u);
   EXPECT_GE(crack.coverage(), 0.97);
   EXPECT_EQ(crack.overcut_faces(), 0u);
@@ -189,6 +190,26 @@ TEST(KerfCli, CutReportsCoverageOfTheSweptSurface) {
               HasSubstr("--check takes every or end, not \"sometimes\""));
   EXPECT_THAT(Kerf(absl::StrCat("path wobble ", dir, "/paper.msh --out ", dir, "/x.json")).output,
               HasSubstr("unknown path family \"wobble\""));
+}
+
+// The hand-cuts experiment cuts every family with each cutter and mode; the crack cutter's cuts
+// cover the swept surface, valid at the end, with nothing dropped, held or frozen.
+TEST(KerfCli, HandCutsExperimentComparesTheCutters) {
+  const CliResult run = Kerf("experiment hand-cuts --seeds 1 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  kerf::v1::CutExperiment experiment;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
+  EXPECT_EQ(experiment.cuts_size(), 4 * 4);  // families x (cutter, mode)
+  int crack = 0;
+  for (const kerf::v1::CutReport& r : experiment.cuts()) {
+    if (!absl::StartsWith(r.mode(), "crack")) continue;
+    ++crack;
+    EXPECT_GE(r.coverage(), 0.97) << r.path() << " " << r.mode();
+    EXPECT_EQ(r.invalid_poses(), 0u) << r.path();
+    EXPECT_EQ(r.dropped_hits() + r.held_poses() + r.frozen_tets(), 0u);
+  }
+  EXPECT_EQ(crack, 8);
+  EXPECT_THAT(Kerf("experiment hand-cuts --seeds 0").output, HasSubstr("at least 1"));
 }
 
 TEST(KerfCli, CutWritesTheCutMeshWithItsSourcesAndReports) {

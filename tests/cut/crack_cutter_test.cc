@@ -56,7 +56,7 @@ TEST(CrackCutter, ABladeThroughOneTetPartsIt) {
 
 TEST(CrackCutter, TheCrackWaitsWhileTheBladeIsInItsTets) {
   TetMesh m = *mesh::MakeBoxLattice({.cells_x = 4, .cells_y = 2, .cells_z = 2});
-  CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m));
+  CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m), CutMode::kDeferred);
   // A blade standing through the bar at x = 2.3 goes half way across it.
   for (int i = 0; i <= 10; ++i) {
     const double y = -0.5 + 0.15 * i;
@@ -71,9 +71,37 @@ TEST(CrackCutter, TheCrackWaitsWhileTheBladeIsInItsTets) {
   EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
 }
 
+// Progressive: the crack opens behind the blade pose by pose, each step's swept surface covered
+// by the crack as soon as the step is made; withdrawing keeps it.
+TEST(CrackCutter, TheCrackFollowsTheBladeProgressively) {
+  const TetMesh bar = *mesh::MakeBoxLattice({.cells_x = 4, .cells_y = 4, .cells_z = 2});
+  TetMesh m = bar;
+  CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m));
+  EXPECT_EQ(cutter.mode(), CutMode::kProgressive);
+  lab::FidelityMeter meter(bar);
+  std::vector<BladePose> poses;
+  int covered = 0;
+  for (int i = 0; i <= 40; ++i) {
+    const double y = -0.5 + 0.06 * i;  // half way across, a fifth of an edge per pose
+    poses.push_back({0.01 * i, {2.3, y, -0.5}, {2.3, y, 2.5}});
+    ASSERT_TRUE(cutter.ApplyPose(poses.back()).ok());
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << "pose " << i << ": " << mesh::ValidateMesh(m);
+    if (i == 0) continue;
+    const std::size_t step = meter.AddStep(poses[i - 1], poses[i]);
+    if (meter.StepSamples(step) == 0) continue;
+    covered += meter.StepCoverage(meter.FindCrack(m), step) == 1 ? 1 : 0;
+  }
+  EXPECT_GT(cutter.waiting_tets(), 0u);
+  EXPECT_GE(covered, 30);  // of the 33 steps inside the bar
+  cutter.Finish();
+  EXPECT_EQ(cutter.waiting_tets(), 0u);
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
+  EXPECT_GE(meter.Measure(meter.FindCrack(m)).coverage, 0.99);
+}
+
 TEST(CrackCutter, BadPosesAndFractionsAreRefused) {
   TetMesh m = *mesh::MakeBoxLattice({});
-  EXPECT_EQ(CrackCutter::Create(&m, 1, {}, 0.5).status().message(),
+  EXPECT_EQ(CrackCutter::Create(&m, 1, {}, CutMode::kProgressive, 0.5).status().message(),
             "the snap fraction must be in [0, 0.5), got 0.5");
   CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m));
   ASSERT_TRUE(cutter.ApplyPose({1, {0.5, 0.5, -1}, {0.5, 0.5, 2}}).ok());
@@ -89,11 +117,11 @@ struct PathResult {
 
 // Cuts `tissue` along a seeded path of `family`, checking after every pose that the mesh is
 // valid, keeps its volume and conforms on the tissue's faces; then measures the cut.
-PathResult CutChecked(const TetMesh& tissue, lab::PathFamily family, std::uint64_t seed,
-                      const lab::HandPathOptions& options = {}) {
+PathResult CutChecked(const TetMesh& tissue, CutMode mode, lab::PathFamily family,
+                      std::uint64_t seed) {
   TetMesh m = tissue;
-  const std::vector<BladePose> poses = lab::MakeHandPath(tissue, family, seed, options);
-  CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m), LimitsFor(m));
+  const std::vector<BladePose> poses = lab::MakeHandPath(tissue, family, seed);
+  CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m), LimitsFor(m), mode);
   lab::FidelityMeter meter(tissue);
   const double volume = RestVolume(tissue);
   const auto check = [&](std::size_t i) {
@@ -131,15 +159,22 @@ constexpr lab::PathFamily kFamilies[] = {lab::PathFamily::kHand, lab::PathFamily
                                          lab::PathFamily::kAlongEdges,
                                          lab::PathFamily::kInFacePlane};
 
+class BothModes : public ::testing::TestWithParam<CutMode> {};
+INSTANTIATE_TEST_SUITE_P(CrackCutter, BothModes,
+                         ::testing::Values(CutMode::kProgressive, CutMode::kDeferred),
+                         [](const ::testing::TestParamInfo<CutMode>& mode) {
+                           return mode.param == CutMode::kProgressive ? "Progressive" : "Deferred";
+                         });
+
 // The paper's lattice at rest, 4 x 6 x 4 cm: every family, four seeds each.
-TEST(CrackCutter, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
+TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
   const TetMesh lattice = *mesh::MakeBoxLattice(
       {.cells_x = 4, .cells_y = 6, .cells_z = 4, .size = Eigen::Vector3d(0.04, 0.06, 0.04)});
   for (const lab::PathFamily family : kFamilies) {
     double lowest = 1;
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
       SCOPED_TRACE(::testing::Message() << lab::PathFamilyName(family) << " seed " << seed);
-      const PathResult r = CutChecked(lattice, family, seed);
+      const PathResult r = CutChecked(lattice, GetParam(), family, seed);
       if (HasFatalFailure()) return;
       lowest = std::min(lowest, r.fidelity.coverage);
       EXPECT_GT(r.fidelity.samples, 0u);
@@ -153,8 +188,8 @@ TEST(CrackCutter, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
 }
 
 // The liver of the paper's lineage and its finer remesh, made by other tools: every family,
-// three seeds each. Valid after every pose; coverage as measured (README).
-TEST(CrackCutter, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
+// three seeds each. Valid after every pose; coverage as measured (docs/cutting-fidelity.md).
+TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
   for (const char* name : {"liver.msh", "liver2.msh"}) {
     const std::string path = kerf::testing::SharedMeshPath(name);
     if (path.empty()) GTEST_SKIP() << "no ../shared/meshes";
@@ -165,7 +200,7 @@ TEST(CrackCutter, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
       for (std::uint64_t seed = 1; seed <= 3; ++seed) {
         SCOPED_TRACE(::testing::Message()
                      << name << ", " << lab::PathFamilyName(family) << " seed " << seed);
-        const PathResult r = CutChecked(liver, family, seed);
+        const PathResult r = CutChecked(liver, GetParam(), family, seed);
         if (HasFatalFailure()) return;
         EXPECT_GE(r.fidelity.coverage, 0.6);
         coverage += r.fidelity.coverage;

@@ -34,10 +34,14 @@ std::vector<FaceKey> DiagonalFaces(const TetMesh& m) {
 
 std::vector<VertexId> All(const TetMesh& m) { return {m.vertices().begin(), m.vertices().end()}; }
 
+PartingChanges PartBy(VertexParting* parting, TetMesh* m, const CrackFaceSet& crack) {
+  return parting->Repart(m, All(*m), [&](const FaceKey& key) { return crack.contains(key); });
+}
+
 TEST(StarParting, NoCrackPartsNothing) {
   TetMesh m = Cube();
-  CrackFaceSet crack;
-  EXPECT_TRUE(PartVertices(&m, All(m), &crack).copies.empty());
+  VertexParting parting;
+  EXPECT_TRUE(PartBy(&parting, &m, {}).made.empty());
 }
 
 TEST(StarParting, ACrackEndingAtAnEdgeLeavesItsVerticesWhole) {
@@ -47,11 +51,11 @@ TEST(StarParting, ACrackEndingAtAnEdgeLeavesItsVerticesWhole) {
   TetMesh m = Cube();
   const std::vector<FaceKey> ring = DiagonalFaces(m);
   ASSERT_EQ(ring.size(), 6u);
-  CrackFaceSet crack = {ring[0]};
-  const Parting parting = PartVertices(&m, All(m), &crack);
-  ASSERT_EQ(parting.copies.size(), 1u);
-  EXPECT_NE(m.rest_position(parting.copies[0].from), Eigen::Vector3d(0, 0, 0));
-  EXPECT_NE(m.rest_position(parting.copies[0].from), Eigen::Vector3d(1, 1, 1));
+  VertexParting parting;
+  const PartingChanges changes = PartBy(&parting, &m, {ring[0]});
+  ASSERT_EQ(changes.made.size(), 1u);
+  EXPECT_NE(m.rest_position(changes.made[0].from), Eigen::Vector3d(0, 0, 0));
+  EXPECT_NE(m.rest_position(changes.made[0].from), Eigen::Vector3d(1, 1, 1));
   EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
 }
 
@@ -66,16 +70,26 @@ TEST(StarParting, ACrackThroughTheBodyPartsItInTwo) {
   }
   ASSERT_EQ(crack.size(), 2u);
   const double volume = 1;
-  const Parting parting = PartVertices(&m, All(m), &crack);
-  EXPECT_EQ(parting.copies.size(), 4u);  // the plane's four corners
+  VertexParting parting;
+  const PartingChanges changes = PartBy(&parting, &m, crack);
+  EXPECT_EQ(changes.made.size(), 4u);  // the plane's four corners
   EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
   EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
   double after = 0;
   for (const mesh::TetId t : m.tets()) after += mesh::RestVolume(m, t);
   EXPECT_NEAR(after, volume, 1e-15);
-  for (const VertexCopy& c : parting.copies) {
+  for (const VertexCopy& c : changes.made) {
     EXPECT_EQ(m.rest_position(c.copy), m.rest_position(c.from));
+    EXPECT_EQ(parting.Origin(c.copy), c.from);
   }
+  // The parts are a function of the crack: parting again changes nothing, and without the crack
+  // the copies go and the cube is whole again.
+  EXPECT_TRUE(PartBy(&parting, &m, crack).replaced.empty());
+  const PartingChanges joined = PartBy(&parting, &m, {});
+  EXPECT_EQ(joined.removed.size(), 4u);
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
+  EXPECT_EQ(m.vertex_count(), 8u);
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
 }
 
 }  // namespace

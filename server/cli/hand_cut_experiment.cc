@@ -1,0 +1,158 @@
+#include "cli/hand_cut_experiment.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_split.h"
+#include "cli/cut_command.h"
+#include "cli/json_output.h"
+#include "lab/hand_paths.h"
+#include "mesh/box_lattice.h"
+#include "mesh/io/mesh_file.h"
+
+namespace kerf::cli {
+namespace {
+
+constexpr absl::string_view kUsage =
+    "kerf experiment hand-cuts [--meshes FILE,...] [--seeds N] [--check every|end] [--json]";
+
+struct Cutting {
+  const char* name;
+  CutterKind cutter;
+  cut::CutMode mode;
+};
+constexpr Cutting kCuttings[] = {
+    {"cases, progressive", CutterKind::kCases, cut::CutMode::kProgressive},
+    {"cases, deferred", CutterKind::kCases, cut::CutMode::kDeferred},
+    {"crack, progressive", CutterKind::kCrack, cut::CutMode::kProgressive},
+    {"crack, deferred", CutterKind::kCrack, cut::CutMode::kDeferred},
+};
+constexpr lab::PathFamily kFamilies[] = {lab::PathFamily::kHand, lab::PathFamily::kThroughVertices,
+                                         lab::PathFamily::kAlongEdges,
+                                         lab::PathFamily::kInFacePlane};
+
+// One table row: the cuts of one mesh, family and cutting over the seeds.
+struct Row {
+  std::string mesh, family, cutting;
+  int paths = 0;
+  double min_coverage = 1, coverage = 0, min_dihedral = 180, seconds = 0;
+  std::size_t poses = 0, lagging = 0, overcut = 0, unpaired = 0, cut_tets = 0, new_tets = 0,
+              slivers = 0, under_one = 0, invalid = 0, dropped = 0, held = 0, frozen = 0;
+};
+
+void Add(const kerf::v1::CutReport& r, Row* row) {
+  ++row->paths;
+  row->min_coverage = std::min(row->min_coverage, r.coverage());
+  row->coverage += r.coverage();
+  row->min_dihedral = std::min(row->min_dihedral, r.min_dihedral_deg());
+  row->seconds += r.cut_seconds();
+  row->poses += r.poses();
+  row->lagging += r.poses_not_covered();
+  row->overcut += r.overcut_faces();
+  row->unpaired += r.unpaired_crack_faces();
+  row->cut_tets += r.cut_tets();
+  row->new_tets += r.new_tets();
+  row->slivers += r.slivers();
+  row->under_one += r.new_tets_under_1deg();
+  row->invalid += r.invalid_poses();
+  row->dropped += r.dropped_hits();
+  row->held += r.held_poses();
+  row->frozen += r.frozen_tets();
+}
+
+}  // namespace
+
+absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
+  int seeds = 3;
+  CheckWhen check = CheckWhen::kEnd;
+  std::vector<std::string> meshes;
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> arg =
+      args->TakeOption("--seeds", 1);
+  if (!arg.ok()) return arg.status();
+  if (arg->has_value()) {
+    absl::StatusOr<int> n = ParseIntArg((**arg)[0], "--seeds");
+    if (!n.ok()) return n.status();
+    if (*n < 1) return absl::InvalidArgumentError("--seeds must be at least 1");
+    seeds = *n;
+  }
+  arg = args->TakeOption("--check", 1);
+  if (!arg.ok()) return arg.status();
+  if (arg->has_value()) {
+    if ((**arg)[0] != "every" && (**arg)[0] != "end") {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--check takes every or end\nusage: ", kUsage));
+    }
+    check = (**arg)[0] == "every" ? CheckWhen::kEveryPose : CheckWhen::kEnd;
+  }
+  arg = args->TakeOption("--meshes", 1);
+  if (!arg.ok()) return arg.status();
+  if (arg->has_value()) {
+    for (absl::string_view m : absl::StrSplit((**arg)[0], ',')) meshes.emplace_back(m);
+  }
+  if (absl::Status s = args->TakePositionals(0, kUsage).status(); !s.ok()) return s;
+  std::vector<std::pair<std::string, mesh::TetMesh>> tissues;
+  if (meshes.empty()) {
+    tissues.emplace_back(
+        "lattice 4x6x4 cm",
+        *mesh::MakeBoxLattice(
+            {.cells_x = 4, .cells_y = 6, .cells_z = 4, .size = Eigen::Vector3d(0.04, 0.06, 0.04)}));
+  }
+  for (const std::string& file : meshes) {
+    absl::StatusOr<mesh::TetMesh> m = LoadMeshOrScene(file);
+    if (!m.ok()) return m.status();
+    tissues.emplace_back(std::filesystem::path(file).filename().string(), *std::move(m));
+  }
+  kerf::v1::CutExperiment experiment;
+  experiment.set_name("hand-cuts");
+  std::vector<Row> rows;
+  for (const auto& [name, tissue] : tissues) {
+    absl::StrAppend(experiment.mutable_scene(), experiment.scene().empty() ? "" : ", ", name);
+    for (const lab::PathFamily family : kFamilies) {
+      for (const Cutting& cutting : kCuttings) {
+        Row row{name, std::string(lab::PathFamilyName(family)), cutting.name};
+        for (int seed = 1; seed <= seeds; ++seed) {
+          mesh::TetMesh m = tissue;
+          const std::vector<cut::BladePose> poses =
+              lab::MakeHandPath(tissue, family, static_cast<std::uint64_t>(seed));
+          CutOptions options;
+          options.cutter = cutting.cutter;
+          options.mode = cutting.mode;
+          options.check = check;
+          absl::StatusOr<kerf::v1::CutReport> report =
+              CutAlongPath(&m, poses, absl::StrCat(name, " ", row.family, " seed ", seed), options);
+          if (!report.ok()) return report.status();
+          Add(*report, &row);
+          *experiment.add_cuts() = *std::move(report);
+        }
+        rows.push_back(row);
+      }
+    }
+  }
+  if (json) return FormatProtoJson(experiment);
+  std::string out = absl::StrCat(
+      "hand-cuts: ", seeds, " seeds per family, check ",
+      check == CheckWhen::kEveryPose ? "every pose" : "at the end",
+      "\n\n| mesh | family | cutter, mode | coverage min / mean | overcut faces | unpaired | "
+      "new per cut | min dihedral (deg) | under 5 deg | under 1 deg | poses lagging | "
+      "invalid | dropped / held / frozen | us per pose |\n"
+      "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
+  for (const Row& r : rows) {
+    absl::StrAppendFormat(
+        &out,
+        "| %s | %s | %s | %.3f / %.3f | %u | %u | %.2f | %.2f | %.2f%% | %u | %s | %u | %u / %u / "
+        "%u | %.1f |\n",
+        r.mesh, r.family, r.cutting, r.min_coverage, r.coverage / r.paths, r.overcut, r.unpaired,
+        r.cut_tets ? static_cast<double>(r.new_tets) / r.cut_tets : 0.0, r.min_dihedral,
+        r.new_tets ? 100.0 * r.slivers / r.new_tets : 0.0, r.under_one,
+        check == CheckWhen::kEveryPose
+            ? absl::StrFormat("%.1f%%", 100.0 * r.lagging / std::max<std::size_t>(r.poses, 1))
+            : std::string("-"),
+        r.invalid, r.dropped, r.held, r.frozen,
+        1e6 * r.seconds / std::max<std::size_t>(r.poses, 1));
+  }
+  return out;
+}
+
+}  // namespace kerf::cli

@@ -1,0 +1,265 @@
+// CrackCutter: splitting units and parting the crack's vertices (see crack_cutter.h).
+#include <Eigen/LU>
+#include <algorithm>
+
+#include "base/check.h"
+#include "cut/crack_cutter.h"
+#include "geometry/tet_measures.h"
+
+namespace kerf::cut {
+namespace {
+
+using mesh::Index;
+using mesh::TetId;
+using mesh::VertexId;
+
+constexpr VertexId kNoVertex{0xffffffffu};
+
+std::uint64_t MakeEdgeKey(VertexId a, VertexId b) {
+  const std::uint64_t lo = std::min(Index(a), Index(b)), hi = std::max(Index(a), Index(b));
+  return lo << 32 | hi;
+}
+
+// Places of temporary points: a face's (its key's hash, high bit clear) or an open tet's apex.
+std::uint64_t FacePlace(const FaceKey& key) {
+  return absl::HashOf(Index(key[0]), Index(key[1]), Index(key[2])) >> 1;
+}
+std::uint64_t ApexPlace(TetId unit) { return (std::uint64_t{1} << 63) | Index(unit); }
+
+}  // namespace
+
+void CrackCutter::SplitUnits(std::vector<TetId> units,
+                             const absl::flat_hash_map<TetId, BladeIn>& blade) {
+  std::sort(units.begin(), units.end());
+  units.erase(std::unique(units.begin(), units.end()), units.end());
+  std::vector<VertexId> origins;
+  for (const TetId u : units) {
+    // A unit named at the last pose may have been renamed by parting since (its tets now are
+    // units of their own, found through their points if they have any).
+    if (!open_.contains(u) && !mesh_->IsAlive(u)) continue;
+    const auto in = blade.find(u);
+    const std::vector<VertexId> used = SplitUnit(u, in == blade.end() ? nullptr : &in->second);
+    origins.insert(origins.end(), used.begin(), used.end());
+  }
+  std::sort(origins.begin(), origins.end());
+  origins.erase(std::unique(origins.begin(), origins.end()), origins.end());
+  Repart(origins);
+  // Temporary points no split uses this pose go.
+  for (auto it = temporary_.begin(); it != temporary_.end();) {
+    if (!temporary_used_.contains(it->first) && parting_.RemoveIfUnused(mesh_, it->second)) {
+      temporary_.erase(it++);
+    } else {
+      ++it;
+    }
+  }
+  temporary_used_.clear();
+}
+
+std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
+  const mesh::TetVertices corners = CornersOf(unit);
+  const TetCrack crack = MakeTetCrack(corners, PointsOf(corners, blade));
+  const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
+  std::optional<CrackSplit> split = SplitWithoutApex(crack, rest);
+  const bool was_open = open_.contains(unit);
+  if (split && split->kind == CrackSplitKind::kWhole && !was_open) {
+    for (const auto& f : split->crack_faces) AddCrack(MakeFaceKey(f[0], f[1], f[2]));
+    return {corners.begin(), corners.end()};
+  }
+  if (!split) {
+    split =
+        SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners,
+                                           blade != nullptr ? blade->apex : ApexWeights(crack)));
+  }
+  if (was_open) {
+    for (const FaceKey& key : open_.at(unit).crack) RemoveCrack(key);
+  }
+  std::vector<FaceKey> crack_faces;
+  for (const auto& f : split->crack_faces) {
+    crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
+    AddCrack(crack_faces.back());
+  }
+  if (blade != nullptr) {
+    ++statistics_.rebuilt;
+  } else {
+    ++statistics_.tets_by_case[static_cast<std::size_t>(split->cut_case)];
+  }
+  const TetId source = was_open ? open_.at(unit).source : SourceTet(unit);
+  std::vector<TetId> pieces = Replace(unit, split->tets);
+  for (const TetId p : pieces) owner_[p] = unit;
+  open_[unit] = {corners, source, std::move(pieces), std::move(crack_faces)};
+  std::vector<VertexId> used;
+  for (const mesh::TetVertices& t : split->tets) used.insert(used.end(), t.begin(), t.end());
+  return used;
+}
+
+std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners,
+                                                const BladeIn* blade) {
+  std::array<FacePoints, 4> points;
+  for (int k = 0; k < 4; ++k) {
+    FacePoints& p = points[k];
+    for (int j = 0; j < 3; ++j) p.corners[j] = corners[mesh::kTetFaces[k][j]];
+    for (int j = 0; j < 3; ++j) {
+      const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
+      if (edge_points_.contains(MakeEdgeKey(a, b))) p.on_edge[j] = EdgePointVertex(a, b);
+      p.corner_on_crack[j] = on_crack_.contains(p.corners[j]);
+    }
+    const FaceKey key = MakeFaceKey(p.corners[0], p.corners[1], p.corners[2]);
+    if (face_points_.contains(key)) {
+      p.inside = FacePointVertex(key);
+    } else if (const auto at =
+                   blade ? blade->faces.find(key) : decltype(blade->faces)::const_iterator{};
+               blade != nullptr && at != blade->faces.end()) {
+      const Eigen::Vector3d& b = at->second;
+      p.inside =
+          TemporaryVertex(FacePlace(key), {key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0});
+    } else if (NeedsHub(p)) {
+      // The hub: the middle of the three edge points, on the face's vertices in key order.
+      Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+      for (int j = 0; j < 3; ++j) {
+        const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
+        const EdgePoint& e = edge_points_.at(MakeEdgeKey(a, b));
+        const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
+        for (int i = 0; i < 3; ++i) {
+          if (key[i] == low) weights[i] += (1 - e.fraction) / 3;
+          if (key[i] == high) weights[i] += e.fraction / 3;
+        }
+      }
+      face_points_[key] = {weights};
+      p.inside = FacePointVertex(key);
+    }
+  }
+  return points;
+}
+
+VertexId CrackCutter::EdgePointVertex(VertexId a, VertexId b) {
+  EdgePoint& e = edge_points_.at(MakeEdgeKey(a, b));
+  if (e.vertex == kNoVertex) {
+    const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
+    e.vertex = MakeVertex({low, high, low, low}, {1 - e.fraction, e.fraction, 0, 0});
+  }
+  return e.vertex;
+}
+
+VertexId CrackCutter::FacePointVertex(const FaceKey& key) {
+  FacePoint& f = face_points_.at(key);
+  if (f.vertex == kNoVertex) {
+    const Eigen::Vector3d& b = f.barycentric;
+    f.vertex = MakeVertex({key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0});
+  }
+  return f.vertex;
+}
+
+VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<VertexId, 4>& from,
+                                      const Eigen::Vector4d& weights) {
+  temporary_used_.insert(place);
+  const auto it = temporary_.find(place);
+  if (it == temporary_.end() || !mesh_->IsAlive(it->second)) {
+    return temporary_[place] = MakeVertex(from, weights);
+  }
+  Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    rest += weights[k] * mesh_->rest_position(from[k]);
+    current += weights[k] * mesh_->current_position(from[k]);
+  }
+  for (const VertexId v : parting_.Ids(it->second)) {
+    if (!mesh_->IsAlive(v)) continue;
+    KERF_CHECK(mesh_->MoveVertex(v, rest, current).ok());
+    made_vertices_.push_back({v, from, weights});
+  }
+  ++statistics_.moved;
+  return it->second;
+}
+
+Eigen::Vector4d CrackCutter::ApexWeights(const TetCrack& crack) const {
+  if (!HasInnerCrack(crack)) return Eigen::Vector4d::Constant(0.25);
+  const std::vector<VertexId> points = TracePoints(crack);
+  Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+  for (const VertexId v : points) middle += mesh_->rest_position(v);
+  middle /= static_cast<double>(points.size());
+  const mesh::TetVertices& c = crack.corners;
+  Eigen::Matrix3d m;
+  for (int k = 0; k < 3; ++k) {
+    m.col(k) = mesh_->rest_position(c[k + 1]) - mesh_->rest_position(c[0]);
+  }
+  const Eigen::Vector3d w = m.fullPivLu().solve(middle - mesh_->rest_position(c[0]));
+  return PulledInside({1 - w.sum(), w.x(), w.y(), w.z()});
+}
+
+VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& from,
+                                 const Eigen::Vector4d& weights) {
+  Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] == 0) continue;
+    rest += weights[k] * mesh_->rest_position(from[k]);
+    current += weights[k] * mesh_->current_position(from[k]);
+  }
+  const VertexId v = mesh_->AddVertex(rest, current);
+  made_vertices_.push_back({v, from, weights});
+  return v;
+}
+
+std::vector<TetId> CrackCutter::Replace(TetId unit, const std::vector<mesh::TetVertices>& pieces) {
+  TetId source = SourceTet(unit);
+  std::vector<TetId> old = {unit};
+  if (const auto it = open_.find(unit); it != open_.end()) {
+    source = it->second.source;
+    old = it->second.pieces;
+  } else if (!MadeByCut(unit)) {
+    ++statistics_.cut_tets;
+  }
+  for (const TetId t : old) {
+    if (MadeByCut(t)) --statistics_.new_tets;
+    source_tet_.erase(t);
+    owner_.erase(t);
+    KERF_CHECK(mesh_->RemoveTet(t).ok());
+  }
+  std::vector<TetId> made;
+  for (mesh::TetVertices piece : pieces) {
+    const double volume =
+        geometry::SignedVolume(mesh_->rest_position(piece[0]), mesh_->rest_position(piece[1]),
+                               mesh_->rest_position(piece[2]), mesh_->rest_position(piece[3]));
+    KERF_CHECK(volume != 0);
+    if (volume < 0) std::swap(piece[2], piece[3]);
+    const absl::StatusOr<TetId> added = mesh_->AddTet(piece);
+    KERF_CHECK(added.ok());
+    source_tet_[*added] = source;
+    ++statistics_.new_tets;
+    made.push_back(*added);
+  }
+  return made;
+}
+
+void CrackCutter::RemoveCrack(const FaceKey& key) {
+  const auto it = crack_.find(key);
+  KERF_CHECK(it != crack_.end());
+  if (--it->second == 0) crack_.erase(it);
+}
+
+void CrackCutter::Repart(const std::vector<VertexId>& origins) {
+  const PartingChanges changes =
+      parting_.Repart(mesh_, origins, [&](const FaceKey& key) { return crack_.contains(key); });
+  for (const auto& [old_tet, new_tet] : changes.replaced) {
+    source_tet_[new_tet] = SourceTet(old_tet);  // a tet renamed by parting keeps its source
+    source_tet_.erase(old_tet);
+    if (const auto it = owner_.find(old_tet); it != owner_.end()) {
+      const TetId unit = it->second;
+      owner_.erase(it);
+      owner_[new_tet] = unit;
+      std::vector<TetId>& pieces = open_.at(unit).pieces;
+      std::replace(pieces.begin(), pieces.end(), old_tet, new_tet);
+    }
+    if (const auto it = group_of_.find(old_tet); it != group_of_.end()) {
+      const TetId group = it->second;
+      group_of_.erase(it);
+      group_of_[new_tet] = group;
+      std::vector<TetId>& members = members_.at(group);
+      std::replace(members.begin(), members.end(), old_tet, new_tet);
+    }
+  }
+  for (const VertexCopy& c : changes.made) {
+    made_vertices_.push_back({c.copy, {c.from, c.from, c.from, c.from}, {1, 0, 0, 0}});
+    ++statistics_.parted_vertices;
+  }
+}
+
+}  // namespace kerf::cut
