@@ -136,8 +136,11 @@ class CrackCutter {
   // vertices and forgets temporary points no split uses.
   void SplitUnits(std::vector<mesh::TetId> units,
                   const absl::flat_hash_map<mesh::TetId, BladeIn>& blade);
-  // Splits one unit; returns the origins of the vertices its pieces use.
+  // Splits one unit; returns the origins whose parting may have changed.
   std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade);
+  // Whether the pieces (live tets) are the split's tets, up to copies and orientation.
+  bool SamePieces(const std::vector<mesh::TetId>& pieces,
+                  const std::vector<mesh::TetVertices>& split) const;
   std::array<FacePoints, 4> PointsOf(const mesh::TetVertices& corners, const BladeIn* blade);
   mesh::VertexId EdgePointVertex(mesh::VertexId a, mesh::VertexId b);
   mesh::VertexId FacePointVertex(const FaceKey& key);

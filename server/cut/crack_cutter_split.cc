@@ -55,6 +55,25 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
   temporary_used_.clear();
 }
 
+bool CrackCutter::SamePieces(const std::vector<TetId>& pieces,
+                             const std::vector<mesh::TetVertices>& split) const {
+  if (pieces.size() != split.size()) return false;
+  const auto sorted = [](mesh::TetVertices t) {
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::vector<mesh::TetVertices> now, then;
+  for (const TetId p : pieces) {
+    mesh::TetVertices t = mesh_->tet(p);
+    for (VertexId& v : t) v = parting_.Origin(v);
+    now.push_back(sorted(t));
+  }
+  for (const mesh::TetVertices& t : split) then.push_back(sorted(t));
+  std::sort(now.begin(), now.end());
+  std::sort(then.begin(), then.end());
+  return now == then;
+}
+
 std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
   const mesh::TetVertices corners = CornersOf(unit);
   const TetCrack crack = MakeTetCrack(corners, PointsOf(corners, blade));
@@ -62,22 +81,42 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
   std::optional<CrackSplit> split = SplitWithoutApex(crack, rest);
   const bool was_open = open_.contains(unit);
   if (split && split->kind == CrackSplitKind::kWhole && !was_open) {
-    for (const auto& f : split->crack_faces) AddCrack(MakeFaceKey(f[0], f[1], f[2]));
-    return {corners.begin(), corners.end()};
+    std::vector<VertexId> to_part;
+    for (const auto& f : split->crack_faces) {
+      AddCrack(MakeFaceKey(f[0], f[1], f[2]));
+      to_part.insert(to_part.end(), f.begin(), f.end());
+    }
+    return to_part;
   }
   if (!split) {
     split =
         SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners,
                                            blade != nullptr ? blade->apex : ApexWeights(crack)));
   }
-  if (was_open) {
-    for (const FaceKey& key : open_.at(unit).crack) RemoveCrack(key);
-  }
   std::vector<FaceKey> crack_faces;
-  for (const auto& f : split->crack_faces) {
-    crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
-    AddCrack(crack_faces.back());
+  for (const auto& f : split->crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
+  std::sort(crack_faces.begin(), crack_faces.end());
+  if (was_open && open_.at(unit).crack == crack_faces &&
+      SamePieces(open_.at(unit).pieces, split->tets)) {
+    // Only the temporary points moved (TemporaryVertex moved them): the pieces stand.
+    return {};
   }
+  // Parting can change only at vertices of the crack faces going or coming, and at those with
+  // copies (the pieces name origins; the tets around them may use copies).
+  std::vector<VertexId> to_part;
+  if (was_open) {
+    for (const FaceKey& key : open_.at(unit).crack) {
+      RemoveCrack(key);
+      to_part.insert(to_part.end(), key.begin(), key.end());
+    }
+  }
+  for (const FaceKey& key : crack_faces) to_part.insert(to_part.end(), key.begin(), key.end());
+  for (const mesh::TetVertices& t : split->tets) {
+    for (const VertexId v : t) {
+      if (parting_.HasCopies(v)) to_part.push_back(v);
+    }
+  }
+  for (const FaceKey& key : crack_faces) AddCrack(key);
   if (blade != nullptr) {
     ++statistics_.rebuilt;
   } else {
@@ -87,9 +126,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
   std::vector<TetId> pieces = Replace(unit, split->tets);
   for (const TetId p : pieces) owner_[p] = unit;
   open_[unit] = {corners, source, std::move(pieces), std::move(crack_faces)};
-  std::vector<VertexId> used;
-  for (const mesh::TetVertices& t : split->tets) used.insert(used.end(), t.begin(), t.end());
-  return used;
+  return to_part;
 }
 
 std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners,

@@ -23,15 +23,8 @@ bool Contains(const std::vector<VertexId>& set, VertexId v) {
   return std::find(set.begin(), set.end(), v) != set.end();
 }
 
-// Every vertex of face k's split.
-std::vector<VertexId> FaceVertices(const TetCrack& crack, int k) {
-  std::vector<VertexId> vertices;
-  for (const Triangle& t : crack.faces[k].triangles) {
-    for (const VertexId v : t) {
-      if (!Contains(vertices, v)) vertices.push_back(v);
-    }
-  }
-  return vertices;
+const std::vector<VertexId>& FaceVertices(const TetCrack& crack, int k) {
+  return crack.face_vertices[k];
 }
 
 std::vector<std::array<VertexId, 2>> Traces(const TetCrack& crack) {
@@ -115,10 +108,15 @@ std::vector<Triangle> InnerFacesOf(const TetCrack& crack, const std::vector<TetV
 }  // namespace
 
 TetCrack MakeTetCrack(const TetVertices& corners, std::array<FacePoints, 4> points) {
-  TetCrack crack{corners, {}, {}};
+  TetCrack crack{corners, {}, {}, {}};
   for (int k = 0; k < 4; ++k) {
     for (int j = 0; j < 3; ++j) points[k].corners[j] = corners[mesh::kTetFaces[k][j]];
     crack.faces[k] = SplitFace(points[k]);
+    for (const Triangle& t : crack.faces[k].triangles) {
+      for (const VertexId v : t) {
+        if (!Contains(crack.face_vertices[k], v)) crack.face_vertices[k].push_back(v);
+      }
+    }
   }
   crack.points = points;
   return crack;

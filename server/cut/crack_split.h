@@ -29,6 +29,7 @@ struct TetCrack {
   // its hub as `inside`.
   std::array<FacePoints, 4> points;
   std::array<FaceSplit, 4> faces;
+  std::array<std::vector<mesh::VertexId>, 4> face_vertices;  // of each face's split
 };
 
 // The crack of a tet from its faces' points (their corners set from `corners`).

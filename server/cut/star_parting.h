@@ -49,6 +49,10 @@ class VertexParting {
     const auto it = origin_.find(v);
     return it == origin_.end() ? v : it->second;
   }
+  bool HasCopies(mesh::VertexId origin) const {
+    const auto it = copies_.find(origin);
+    return it != copies_.end() && !it->second.empty();
+  }
   // The origin and its live copies.
   std::vector<mesh::VertexId> Ids(mesh::VertexId origin) const;
   // The live tets using the origin or one of its copies.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "cut/crack_cutter.h"
 #include "cut/cutter.h"
 #include "mesh/box_lattice.h"
 
@@ -57,6 +58,46 @@ void BM_PoseInsideACut(benchmark::State& state) {
     const double x = 0.5 * size - 0.04 + 0.002 * pose;
     const Eigen::Vector3d tip(x, 0.5 * size + 0.0013, size - 0.0133);
     (void)cutter->ApplyPose({0.01 * pose, tip, tip + Eigen::Vector3d(0, 0, 0.03)});
+    ++pose;
+  };
+  restart();
+  apply();
+  for (auto _ : state) {
+    if (pose == 40) {
+      state.PauseTiming();
+      restart();
+      apply();
+      state.ResumeTiming();
+    }
+    apply();
+  }
+  state.counters["tets"] = static_cast<double>(m->tet_count());
+}
+
+// The same pose with cut::CrackCutter, deferred (second argument 0) or progressive (1), warm:
+// the two cutters compared in one run.
+void BM_CrackPoseInsideACut(benchmark::State& state) {
+  std::unique_ptr<mesh::TetMesh> m;
+  std::unique_ptr<CrackCutter> cutter;
+  double size = 0;
+  int pose = 0;
+  BladeLimits limits;
+  limits.max_speed = 1e9;
+  const CutMode mode = state.range(1) == 1 ? CutMode::kProgressive : CutMode::kDeferred;
+  auto restart = [&] {
+    m = LatticeWithAbout(state.range(0));
+    Eigen::Vector3d high = Eigen::Vector3d::Zero();
+    for (const mesh::VertexId v : m->vertices()) high = high.cwiseMax(m->rest_position(v));
+    size = high.x();
+    cutter = std::make_unique<CrackCutter>(*CrackCutter::Create(m.get(), 0.01, limits, mode));
+    pose = 0;
+  };
+  auto apply = [&] {
+    const double x = 0.5 * size - 0.04 + 0.002 * pose;
+    const Eigen::Vector3d tip(x, 0.5 * size + 0.0013, size - 0.0133);
+    if (!cutter->ApplyPose({0.01 * pose, tip, tip + Eigen::Vector3d(0, 0, 0.03)}).ok()) {
+      state.SkipWithError("a pose was refused");
+    }
     ++pose;
   };
   restart();
@@ -154,6 +195,10 @@ void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
 BENCHMARK(BM_PoseInsideACut)
     ->ArgsProduct({{10000, 1000000}, {0, 1}})
     ->ArgNames({"tets", "cold"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CrackPoseInsideACut)
+    ->ArgsProduct({{10000, 1000000}, {0, 1}})
+    ->ArgNames({"tets", "progressive"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ProgressivePoseInsideKTets)->DenseRange(1, 20)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FinalSubdivision)
