@@ -46,9 +46,11 @@ std::vector<cut::BladePose> HandPass(Frame& f, const HandPathOptions& options) {
   const Eigen::Vector3d travel = f.Direction();
   const Eigen::Vector3d across(-travel.y(), travel.x(), 0);
   const double reach = HalfExtentAlong(f.box, travel) + 2 * f.edge;
-  const Eigen::Vector3d start = centre - reach * travel +
-                                f.Uniform(-0.25, 0.25) * HalfExtentAlong(f.box, across) * across +
-                                Eigen::Vector3d(0, 0, f.Uniform(-0.2, 0.2) * f.height);
+  // One draw per statement: the order of draws within an expression is the compiler's.
+  const double aside = f.Uniform(-0.25, 0.25) * HalfExtentAlong(f.box, across);
+  const double up = f.Uniform(-0.2, 0.2) * f.height;
+  const Eigen::Vector3d start =
+      centre - reach * travel + aside * across + Eigen::Vector3d(0, 0, up);
   const double speed = 2 * reach / options.duration;  // along travel
   const double amplitude = f.Uniform(0.02, 0.2) * f.edge;
   const double frequency = f.Uniform(8, 12), phase = f.Uniform(0, 2 * kPi);
