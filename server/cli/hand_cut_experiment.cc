@@ -38,6 +38,7 @@ struct Row {
   std::string mesh, family, cutting;
   int paths = 0;
   double min_coverage = 1, coverage = 0, min_dihedral = 180, seconds = 0;
+  std::size_t made = 0;  // tets the cut made, alive at the end
   std::size_t poses = 0, lagging = 0, overcut = 0, unpaired = 0, cut_tets = 0, new_tets = 0,
               slivers = 0, under_one = 0, invalid = 0, dropped = 0, held = 0, frozen = 0;
 };
@@ -55,6 +56,7 @@ void Add(const kerf::v1::CutReport& r, Row* row) {
   row->cut_tets += r.cut_tets();
   row->new_tets += r.new_tets();
   row->slivers += r.slivers();
+  row->made += r.tets_after() + r.cut_tets() - r.tets_before();
   row->under_one += r.new_tets_under_1deg();
   row->invalid += r.invalid_poses();
   row->dropped += r.dropped_hits();
@@ -135,17 +137,18 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
       "hand-cuts: ", seeds, " seeds per family, check ",
       check == CheckWhen::kEveryPose ? "every pose" : "at the end",
       "\n\n| mesh | family | cutter, mode | coverage min / mean | overcut faces | unpaired | "
-      "new per cut | min dihedral (deg) | under 5 deg | under 1 deg | poses lagging | "
+      "new per cut | min dihedral (deg) | new tets under 5 deg | under 1 deg | poses lagging | "
       "invalid | dropped / held / frozen | us per pose |\n"
       "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
   for (const Row& r : rows) {
     absl::StrAppendFormat(
         &out,
-        "| %s | %s | %s | %.3f / %.3f | %u | %u | %.2f | %.2f | %.2f%% | %u | %s | %u | %u / %u / "
+        "| %s | %s | %s | %.3f / %.3f | %u | %u | %.2f | %.2f | %u of %u | %u | %s | %u | %u / %u "
+        "/ "
         "%u | %.1f |\n",
         r.mesh, r.family, r.cutting, r.min_coverage, r.coverage / r.paths, r.overcut, r.unpaired,
-        r.cut_tets ? static_cast<double>(r.new_tets) / r.cut_tets : 0.0, r.min_dihedral,
-        r.new_tets ? 100.0 * r.slivers / r.new_tets : 0.0, r.under_one,
+        r.cut_tets ? static_cast<double>(r.new_tets) / r.cut_tets : 0.0, r.min_dihedral, r.slivers,
+        r.made, r.under_one,
         check == CheckWhen::kEveryPose
             ? absl::StrFormat("%.1f%%", 100.0 * r.lagging / std::max<std::size_t>(r.poses, 1))
             : std::string("-"),

@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -35,12 +36,14 @@ void EvictCaches() {
 
 // One iteration is one pose: the blade, 13 mm deep into the top, advances 2 mm along x
 // through the middle of the lattice. Every 40 poses the mesh is made afresh (not timed). With
-// the second argument 1 the caches are then evicted, so that each cut starts cold on both
-// sizes (as after a physics step over a mesh larger than the cache); with 0 the small mesh is
-// still in the cache from being built and the large one is not.
-void BM_PoseInsideACut(benchmark::State& state) {
+// `evict` the caches are then evicted, so that each cut starts cold on both sizes (as after a
+// physics step over a mesh larger than the cache); without, the small mesh is still in the
+// cache from being built and the large one is not. `make` makes the cutter.
+template <typename C>
+void PoseInsideACut(benchmark::State& state, bool evict,
+                    const std::function<C(mesh::TetMesh*, const BladeLimits&)>& make) {
   std::unique_ptr<mesh::TetMesh> m;
-  std::unique_ptr<Cutter> cutter;
+  std::unique_ptr<C> cutter;
   double size = 0;
   int pose = 0;
   BladeLimits limits;
@@ -50,47 +53,9 @@ void BM_PoseInsideACut(benchmark::State& state) {
     Eigen::Vector3d high = Eigen::Vector3d::Zero();
     for (const mesh::VertexId v : m->vertices()) high = high.cwiseMax(m->rest_position(v));
     size = high.x();
-    cutter = std::make_unique<Cutter>(*Cutter::Create(m.get(), 0.01, limits, CutMode::kDeferred));
+    cutter = std::make_unique<C>(make(m.get(), limits));
     pose = 0;
-    if (state.range(1) == 1) EvictCaches();
-  };
-  auto apply = [&] {
-    const double x = 0.5 * size - 0.04 + 0.002 * pose;
-    const Eigen::Vector3d tip(x, 0.5 * size + 0.0013, size - 0.0133);
-    (void)cutter->ApplyPose({0.01 * pose, tip, tip + Eigen::Vector3d(0, 0, 0.03)});
-    ++pose;
-  };
-  restart();
-  apply();
-  for (auto _ : state) {
-    if (pose == 40) {
-      state.PauseTiming();
-      restart();
-      apply();
-      state.ResumeTiming();
-    }
-    apply();
-  }
-  state.counters["tets"] = static_cast<double>(m->tet_count());
-}
-
-// The same pose with cut::CrackCutter, deferred (second argument 0) or progressive (1), warm:
-// the two cutters compared in one run.
-void BM_CrackPoseInsideACut(benchmark::State& state) {
-  std::unique_ptr<mesh::TetMesh> m;
-  std::unique_ptr<CrackCutter> cutter;
-  double size = 0;
-  int pose = 0;
-  BladeLimits limits;
-  limits.max_speed = 1e9;
-  const CutMode mode = state.range(1) == 1 ? CutMode::kProgressive : CutMode::kDeferred;
-  auto restart = [&] {
-    m = LatticeWithAbout(state.range(0));
-    Eigen::Vector3d high = Eigen::Vector3d::Zero();
-    for (const mesh::VertexId v : m->vertices()) high = high.cwiseMax(m->rest_position(v));
-    size = high.x();
-    cutter = std::make_unique<CrackCutter>(*CrackCutter::Create(m.get(), 0.01, limits, mode));
-    pose = 0;
+    if (evict) EvictCaches();
   };
   auto apply = [&] {
     const double x = 0.5 * size - 0.04 + 0.002 * pose;
@@ -112,6 +77,23 @@ void BM_CrackPoseInsideACut(benchmark::State& state) {
     apply();
   }
   state.counters["tets"] = static_cast<double>(m->tet_count());
+}
+
+// The cases cutter, deferred; the second argument 1 evicts the caches.
+void BM_PoseInsideACut(benchmark::State& state) {
+  PoseInsideACut<Cutter>(state, state.range(1) == 1,
+                         [](mesh::TetMesh* m, const BladeLimits& limits) {
+                           return *Cutter::Create(m, 0.01, limits, CutMode::kDeferred);
+                         });
+}
+
+// The crack cutter, deferred (second argument 0) or progressive (1), warm: the two cutters
+// compared in one run.
+void BM_CrackPoseInsideACut(benchmark::State& state) {
+  const CutMode mode = state.range(1) == 1 ? CutMode::kProgressive : CutMode::kDeferred;
+  PoseInsideACut<CrackCutter>(state, false, [mode](mesh::TetMesh* m, const BladeLimits& limits) {
+    return *CrackCutter::Create(m, 0.01, limits, mode);
+  });
 }
 
 // Time per cut tet of the final subdivision of a whole cross-section: a blade through the full
