@@ -54,6 +54,62 @@ TEST(CrackCutter, ABladeThroughOneTetPartsIt) {
   EXPECT_EQ(cutter.waiting_tets(), 0u);
 }
 
+// Two tets sharing a face, the blade sweeping through both in either mode: each pose valid and
+// conforming, the two halves apart at the end.
+TEST(CrackCutter, TwoTetsCutThroughStayConformingAndPart) {
+  TetMesh pair;
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
+        Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 1)}) {
+    pair.AddVertex(p);
+  }
+  using mesh::VertexId;
+  ASSERT_TRUE(pair.AddTet({VertexId(0), VertexId(1), VertexId(2), VertexId(3)}).ok());
+  ASSERT_TRUE(pair.AddTet({VertexId(1), VertexId(2), VertexId(3), VertexId(4)}).ok());
+  if (mesh::RestVolume(pair, mesh::TetId(1)) < 0) {
+    ASSERT_TRUE(pair.RemoveTet(mesh::TetId(1)).ok());
+    ASSERT_TRUE(pair.AddTet({VertexId(2), VertexId(1), VertexId(3), VertexId(4)}).ok());
+  }
+  for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+    TetMesh m = pair;
+    CrackCutter cutter =
+        *CrackCutter::Create(&m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100}, mode);
+    for (int i = 0; i <= 6; ++i) {
+      const double z = -0.5 + 0.35 * i;  // the plane x = 0.4, swept upwards
+      ASSERT_TRUE(cutter.ApplyPose({0.1 * i, {0.4, -1, z}, {0.4, 2, z}}).ok());
+      ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << i << ": " << mesh::ValidateMesh(m);
+      const absl::Status tiled = mesh::CheckOriginalFacesTiled(
+          pair, m, [&](mesh::TetId t) { return cutter.SourceTet(t); },
+          [&](mesh::VertexId v) { return cutter.PartedFrom(v); });
+      ASSERT_TRUE(tiled.ok()) << i << ": " << tiled;
+    }
+    cutter.Finish();
+    EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+    EXPECT_NEAR(RestVolume(m), RestVolume(pair), 1e-15);
+  }
+}
+
+// A blade trembling back and forth across edges cuts each once (deferred: the first crossing
+// is the cut, later ones are the same cut): the same tets as one clean pass.
+TEST(CrackCutter, TrembleAcrossEdgesCutsThemOnce) {
+  const TetMesh lattice = *mesh::MakeBoxLattice({.cells_x = 2, .cells_y = 2, .cells_z = 2});
+  std::size_t tets[2] = {0, 0};
+  for (const bool tremble : {false, true}) {
+    TetMesh m = lattice;
+    CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m), CutMode::kDeferred);
+    // A blade through the whole depth at x = 0.55 goes across y, trembling 0.1 in x or not.
+    for (int i = 0; i <= 60; ++i) {
+      const double x = tremble ? 0.5 + 0.1 * (i % 2) : 0.55, y = -0.5 + 0.05 * i;
+      ASSERT_TRUE(cutter.ApplyPose({0.001 * i, {x, y, -0.5}, {x, y, 2.5}}).ok());
+    }
+    cutter.Finish();
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
+    EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+    tets[tremble ? 1 : 0] = m.tet_count();
+  }
+  EXPECT_EQ(tets[1], tets[0]);
+}
+
 TEST(CrackCutter, TheCrackWaitsWhileTheBladeIsInItsTets) {
   TetMesh m = *mesh::MakeBoxLattice({.cells_x = 4, .cells_y = 2, .cells_z = 2});
   CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m), CutMode::kDeferred);
