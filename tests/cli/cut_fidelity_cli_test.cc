@@ -1,0 +1,99 @@
+// kerf cut's measures of where a cut is against the blade's path, kerf path and the hand-cuts
+// experiment, run as a user runs them.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "google/protobuf/util/json_util.h"
+#include "kerf/v1/cut_report.pb.h"
+#include "support/run_command.h"
+
+namespace {
+
+using ::testing::HasSubstr;
+
+using CliResult = kerf::testing::CommandResult;
+
+// Runs kerf with these arguments; the output holds stdout and stderr together.
+CliResult Kerf(const std::string& args) {
+  return kerf::testing::RunCommand(absl::StrCat(KERF_BINARY, " ", args, " 2>&1"));
+}
+
+// kerf cut measures where the cut is against the path (lab::FidelityMeter) on a mesh at rest:
+// the straight path through the paper's lattice is cut where it went; a hand-like path made by
+// kerf path is read back and measured too.
+TEST(KerfCutFidelity, CutReportsCoverageOfTheSweptSurface) {
+  const std::string dir = ::testing::TempDir();
+  ASSERT_EQ(Kerf(absl::StrCat("mesh lattice 4 6 4 --size 0.04 0.06 0.04 --out ", dir, "/paper.msh"))
+                .exit_code,
+            0);
+  const auto cut = [&](absl::string_view path, absl::string_view extra) {
+    const CliResult run = Kerf(absl::StrCat("cut ", dir, "/paper.msh --path ", path, " --out ", dir,
+                                            "/paper-cut.vtu --json", extra));
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    kerf::v1::CutReport report;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok());
+    return report;
+  };
+  const kerf::v1::CutReport straight =
+      cut(absl::StrCat(KERF_SOURCE_DIR, "/server/cut/paths/lattice-straight.json"), "");
+  EXPECT_EQ(straight.check(), "end");
+  EXPECT_TRUE(straight.fidelity_measured());
+  EXPECT_EQ(straight.crossed_tets(), straight.cut_tets());
+  EXPECT_GE(straight.swept_samples(), 20 * straight.crossed_tets());
+  EXPECT_EQ(straight.coverage(), 1);
+  EXPECT_EQ(straight.overcut_faces(), 0u);
+  EXPECT_EQ(straight.unpaired_crack_faces(), 0u);
+  EXPECT_GT(straight.crack_faces(), 0u);
+  const CliResult path = Kerf(absl::StrCat(
+      "path hand ", dir, "/paper.msh --seed 3 --duration 0.3 --out ", dir, "/hand.json"));
+  ASSERT_EQ(path.exit_code, 0) << path.output;
+  EXPECT_THAT(path.output, HasSubstr("hand path, seed 3: "));
+  const kerf::v1::CutReport hand = cut(dir + "/hand.json", " --check every --deferred");
+  EXPECT_EQ(hand.check(), "every");
+  EXPECT_GT(hand.swept_samples(), 0u);
+  EXPECT_GT(hand.coverage(), 0);
+  EXPECT_LE(hand.coverage(), 1);
+  EXPECT_LE(hand.min_step_coverage(), 1);
+  // The crack cutter cuts where the hand went, valid after every pose.
+  const kerf::v1::CutReport crack = cut(dir + "/hand.json", " --check every --cutter crack");
+  EXPECT_EQ(crack.mode(), "crack, progressive");
+  EXPECT_EQ(crack.invalid_poses(), 0u);
+  EXPECT_GE(crack.coverage(), 0.97);
+  EXPECT_EQ(crack.overcut_faces(), 0u);
+  EXPECT_THAT(Kerf(absl::StrCat("cut ", dir, "/paper.msh --path ", dir, "/hand.json --out ", dir,
+                                "/x.vtu --cutter sharp"))
+                  .output,
+              HasSubstr("--cutter takes cases or crack, not \"sharp\""));
+  EXPECT_THAT(Kerf(absl::StrCat("cut ", dir, "/paper.msh --path ", dir, "/hand.json --out ", dir,
+                                "/x.vtu --check sometimes"))
+                  .output,
+              HasSubstr("--check takes every or end, not \"sometimes\""));
+  EXPECT_THAT(Kerf(absl::StrCat("path wobble ", dir, "/paper.msh --out ", dir, "/x.json")).output,
+              HasSubstr("unknown path family \"wobble\""));
+}
+
+// The hand-cuts experiment cuts every family with each cutter and mode; the crack cutter's cuts
+// cover the swept surface, valid at the end, with nothing dropped, held or frozen.
+TEST(KerfCutFidelity, HandCutsExperimentComparesTheCutters) {
+  const CliResult run = Kerf("experiment hand-cuts --seeds 1 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  kerf::v1::CutExperiment experiment;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
+  EXPECT_EQ(experiment.cuts_size(), 4 * 4);  // families x (cutter, mode)
+  int crack = 0;
+  for (const kerf::v1::CutReport& r : experiment.cuts()) {
+    if (!absl::StartsWith(r.mode(), "crack")) continue;
+    ++crack;
+    EXPECT_GE(r.coverage(), 0.85) << r.path() << " " << r.mode();
+    EXPECT_EQ(r.invalid_poses(), 0u) << r.path();
+    EXPECT_EQ(r.dropped_hits() + r.held_poses() + r.frozen_tets(), 0u);
+  }
+  EXPECT_EQ(crack, 8);
+  EXPECT_THAT(Kerf("experiment hand-cuts --seeds 0").output, HasSubstr("at least 1"));
+}
+
+}  // namespace
