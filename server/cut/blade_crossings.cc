@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "absl/container/flat_hash_set.h"
+#include "cut/element_keys.h"
 #include "geometry/moving_crossing.h"
 #include "geometry/segment_box.h"
 #include "geometry/segment_distance.h"
@@ -19,11 +20,6 @@ using mesh::VertexId;
 
 // The tip's path passes through an edge when it comes this near it, in edge lengths.
 constexpr double kThroughEdge = 1e-9;
-
-std::uint64_t EdgeKey(VertexId a, VertexId b) {
-  const std::uint64_t lo = std::min(Index(a), Index(b)), hi = std::max(Index(a), Index(b));
-  return lo << 32 | hi;
-}
 
 }  // namespace
 
@@ -80,7 +76,7 @@ Crossings BladeCrossings::Find(
     for (const auto& [i, j] : mesh::kTetEdges) {
       const VertexId lo = Index(v[i]) < Index(v[j]) ? v[i] : v[j];
       const VertexId hi = lo == v[i] ? v[j] : v[i];
-      if (!tested_edges.insert(EdgeKey(lo, hi)).second || skip_edge(lo, hi)) continue;
+      if (!tested_edges.insert(MakeEdgeKey(lo, hi)).second || skip_edge(lo, hi)) continue;
       if (const auto c = geometry::FirstEdgeCrossing(motion(lo), motion(hi), tip, heel)) {
         found.edges.push_back({lo, hi, c->fraction});
       } else if (const std::optional<double> at = TipPathThroughEdge(from, to, lo, hi)) {

@@ -16,13 +16,6 @@ using mesh::Index;
 using mesh::TetId;
 using mesh::VertexId;
 
-std::uint64_t MakeEdgeKey(VertexId a, VertexId b) {
-  const std::uint64_t lo = std::min(Index(a), Index(b)), hi = std::max(Index(a), Index(b));
-  return lo << 32 | hi;
-}
-
-std::uint64_t ApexPlace(TetId unit) { return (std::uint64_t{1} << 63) | Index(unit); }
-
 void SortUnique(std::vector<TetId>* v) {
   std::sort(v->begin(), v->end());
   v->erase(std::unique(v->begin(), v->end()), v->end());

@@ -96,7 +96,6 @@ class CrackCutter {
     absl::flat_hash_map<FaceKey, Eigen::Vector3d, FaceKeyHash> faces;  // crossings, barycentric
     Eigen::Vector4d apex;  // the crack's point inside: the tip, or the chord's middle
   };
-  using EdgeKey = std::uint64_t;
 
   CrackCutter(mesh::TetMesh* mesh, BladeCrossings crossings, const BladeLimits& limits,
               CutMode mode, double snap_fraction)
@@ -106,6 +105,11 @@ class CrackCutter {
         mode_(mode),
         snap_fraction_(snap_fraction) {}
 
+  // The place of an open tet's apex among the temporary points (faces' places have the high bit
+  // clear).
+  static std::uint64_t ApexPlace(mesh::TetId unit) {
+    return (std::uint64_t{1} << 63) | mesh::Index(unit);
+  }
   // A tet as the crack sees it: a live tet, or an open tet (by its id before it opened).
   mesh::TetId UnitOf(mesh::TetId t) const;
   mesh::TetVertices CornersOf(mesh::TetId unit) const;  // origins

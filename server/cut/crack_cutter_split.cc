@@ -15,16 +15,10 @@ using mesh::VertexId;
 
 constexpr VertexId kNoVertex{0xffffffffu};
 
-std::uint64_t MakeEdgeKey(VertexId a, VertexId b) {
-  const std::uint64_t lo = std::min(Index(a), Index(b)), hi = std::max(Index(a), Index(b));
-  return lo << 32 | hi;
-}
-
 // Places of temporary points: a face's (its key's hash, high bit clear) or an open tet's apex.
 std::uint64_t FacePlace(const FaceKey& key) {
   return absl::HashOf(Index(key[0]), Index(key[1]), Index(key[2])) >> 1;
 }
-std::uint64_t ApexPlace(TetId unit) { return (std::uint64_t{1} << 63) | Index(unit); }
 
 }  // namespace
 

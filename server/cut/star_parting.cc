@@ -18,12 +18,6 @@ int Root(std::vector<int>& parent, int i) {
 
 }  // namespace
 
-FaceKey MakeFaceKey(VertexId a, VertexId b, VertexId c) {
-  FaceKey key = {a, b, c};
-  std::sort(key.begin(), key.end());
-  return key;
-}
-
 std::vector<VertexId> VertexParting::Ids(VertexId origin) const {
   std::vector<VertexId> ids = {origin};
   if (const auto it = copies_.find(origin); it != copies_.end()) {

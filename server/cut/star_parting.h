@@ -16,18 +16,11 @@
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
+#include "cut/element_keys.h"
 #include "mesh/tet_mesh.h"
 
 namespace kerf::cut {
 
-// A face by its three vertices, smallest id first.
-using FaceKey = std::array<mesh::VertexId, 3>;
-FaceKey MakeFaceKey(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c);
-struct FaceKeyHash {
-  std::size_t operator()(const FaceKey& k) const {
-    return absl::HashOf(mesh::Index(k[0]), mesh::Index(k[1]), mesh::Index(k[2]));
-  }
-};
 // Crack faces, by their vertices' origins.
 using CrackFaceSet = absl::flat_hash_set<FaceKey, FaceKeyHash>;
 
