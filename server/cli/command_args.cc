@@ -6,6 +6,7 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
 
 namespace kerf::cli {
 
@@ -30,6 +31,18 @@ absl::StatusOr<std::optional<std::vector<absl::string_view>>> CommandArgs::TakeO
   std::vector<absl::string_view> values(it + 1, it + 1 + count);
   args_.erase(it, it + 1 + count);
   return values;
+}
+
+absl::StatusOr<std::optional<absl::string_view>> CommandArgs::TakeChoice(
+    absl::string_view name, std::initializer_list<absl::string_view> choices,
+    absl::string_view usage) {
+  absl::StatusOr<std::optional<std::vector<absl::string_view>>> value = TakeOption(name, 1);
+  if (!value.ok()) return value.status();
+  if (!value->has_value()) return std::nullopt;
+  const absl::string_view chosen = (**value)[0];
+  if (std::find(choices.begin(), choices.end(), chosen) != choices.end()) return chosen;
+  return absl::InvalidArgumentError(absl::StrCat(name, " takes ", absl::StrJoin(choices, " or "),
+                                                 ", not \"", chosen, "\"\nusage: ", usage));
 }
 
 absl::StatusOr<std::vector<absl::string_view>> CommandArgs::TakePositionals(

@@ -2,6 +2,7 @@
 // that anything left over is reported as unknown.
 #pragma once
 
+#include <initializer_list>
 #include <optional>
 #include <vector>
 
@@ -21,6 +22,12 @@ class CommandArgs {
   // INVALID_ARGUMENT if fewer than `count` values follow.
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> TakeOption(absl::string_view name,
                                                                            int count);
+
+  // The value after --name (and removes both), or nullopt if --name is absent. INVALID_ARGUMENT
+  // "--name takes a or b, not "x"" with `usage` for a value not among `choices`.
+  absl::StatusOr<std::optional<absl::string_view>> TakeChoice(
+      absl::string_view name, std::initializer_list<absl::string_view> choices,
+      absl::string_view usage);
 
   // The remaining arguments, which must be exactly `count` positional values.
   // INVALID_ARGUMENT naming an unknown option or the wrong count, with `usage`.

@@ -408,27 +408,15 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
     if (!value.ok()) return value.status();
     if (value->has_value()) *into = std::string((**value)[0]);
   }
-  absl::StatusOr<std::optional<std::vector<absl::string_view>>> cutter_arg =
-      rest.TakeOption("--cutter", 1);
-  if (!cutter_arg.ok()) return cutter_arg.status();
-  if (cutter_arg->has_value()) {
-    const absl::string_view kind = (**cutter_arg)[0];
-    if (kind != "cases" && kind != "crack") {
-      return absl::InvalidArgumentError(
-          absl::StrCat("--cutter takes cases or crack, not \"", kind, "\"\nusage: ", kUsage));
-    }
-    options.cutter = kind == "crack" ? CutterKind::kCrack : CutterKind::kCases;
-  }
-  absl::StatusOr<std::optional<std::vector<absl::string_view>>> check_arg =
-      rest.TakeOption("--check", 1);
-  if (!check_arg.ok()) return check_arg.status();
-  if (check_arg->has_value()) {
-    const absl::string_view when = (**check_arg)[0];
-    if (when != "every" && when != "end") {
-      return absl::InvalidArgumentError(
-          absl::StrCat("--check takes every or end, not \"", when, "\"\nusage: ", kUsage));
-    }
-    options.check = when == "every" ? CheckWhen::kEveryPose : CheckWhen::kEnd;
+  absl::StatusOr<std::optional<absl::string_view>> cutter =
+      rest.TakeChoice("--cutter", {"cases", "crack"}, kUsage);
+  if (!cutter.ok()) return cutter.status();
+  if (*cutter == "crack") options.cutter = CutterKind::kCrack;
+  absl::StatusOr<std::optional<absl::string_view>> check =
+      rest.TakeChoice("--check", {"every", "end"}, kUsage);
+  if (!check.ok()) return check.status();
+  if (check->has_value()) {
+    options.check = **check == "every" ? CheckWhen::kEveryPose : CheckWhen::kEnd;
   } else if (!options.trace_path.empty() || !options.dump_directory.empty()) {
     options.check = CheckWhen::kEveryPose;  // a trace or dump is of every pose
   }

@@ -79,15 +79,10 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
     if (*n < 1) return absl::InvalidArgumentError("--seeds must be at least 1");
     seeds = *n;
   }
-  arg = args->TakeOption("--check", 1);
-  if (!arg.ok()) return arg.status();
-  if (arg->has_value()) {
-    if ((**arg)[0] != "every" && (**arg)[0] != "end") {
-      return absl::InvalidArgumentError(
-          absl::StrCat("--check takes every or end\nusage: ", kUsage));
-    }
-    check = (**arg)[0] == "every" ? CheckWhen::kEveryPose : CheckWhen::kEnd;
-  }
+  absl::StatusOr<std::optional<absl::string_view>> when =
+      args->TakeChoice("--check", {"every", "end"}, kUsage);
+  if (!when.ok()) return when.status();
+  if (*when == "every") check = CheckWhen::kEveryPose;
   arg = args->TakeOption("--meshes", 1);
   if (!arg.ok()) return arg.status();
   if (arg->has_value()) {

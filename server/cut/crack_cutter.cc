@@ -305,12 +305,17 @@ void CrackCutter::SplitReadyGroups(const BladePose* pose) {
   }
   std::sort(ready.begin(), ready.end());  // the same order whatever the map's
   for (const TetId root : ready) {
-    std::vector<TetId> group = std::move(members_.at(root));
-    members_.erase(root);
-    for (const TetId t : group) group_of_.erase(t);
+    const std::vector<TetId> group = TakeGroup(root);
     if (mode_ == CutMode::kDeferred) SplitUnits(group, {});
     CloseUnits(group);
   }
+}
+
+std::vector<TetId> CrackCutter::TakeGroup(TetId root) {
+  std::vector<TetId> group = std::move(members_.at(root));
+  members_.erase(root);
+  for (const TetId t : group) group_of_.erase(t);
+  return group;
 }
 
 void CrackCutter::CloseUnitsTheBladeLeft() {
@@ -323,9 +328,7 @@ void CrackCutter::CloseUnitsTheBladeLeft() {
     if (!with_blade.contains(root)) closing.push_back(root);
   }
   for (const TetId root : closing) {
-    std::vector<TetId> group = std::move(members_.at(root));
-    members_.erase(root);
-    for (const TetId t : group) group_of_.erase(t);
+    const std::vector<TetId> group = TakeGroup(root);
     CloseUnits(group);
   }
   // Units the blade passed with no point of their own.

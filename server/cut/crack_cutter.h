@@ -164,6 +164,8 @@ class CrackCutter {
   // The groups of units sharing points: they split together (deferred) and stay open together
   // (progressive), so a unit split from its own faces never meets one split finer.
   void Join(const std::vector<mesh::TetId>& units);
+  // Removes the group named `root`, returning its units.
+  std::vector<mesh::TetId> TakeGroup(mesh::TetId root);
   // Closes the groups the blade at `pose` meets none of (every group if null), splitting them
   // first (deferred).
   void SplitReadyGroups(const BladePose* pose);
