@@ -13,8 +13,6 @@
 #include "cli/command_args.h"
 #include "cli/json_output.h"
 #include "cut/crack_cutter.h"
-#include "cut/cutter.h"
-#include "cut/lag_meter.h"
 #include "geometry/tet_measures.h"
 #include "lab/crack_fidelity.h"
 #include "mesh/connected_components.h"
@@ -32,7 +30,7 @@ namespace {
 
 constexpr absl::string_view kUsage =
     "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end] "
-    "[--cutter cases|crack] [--uncovered OUT.csv] "
+    "[--uncovered OUT.csv] "
     "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
 double TotalRestVolume(const mesh::TetMesh& m) {
@@ -42,8 +40,7 @@ double TotalRestVolume(const mesh::TetMesh& m) {
 }
 
 // The VTU of a cut mesh with the arrays kerf cut writes.
-template <typename Cutter>
-std::string CutMeshVtu(const mesh::TetMesh& m, const Cutter& cutter,
+std::string CutMeshVtu(const mesh::TetMesh& m, const cut::CrackCutter& cutter,
                        std::uint32_t original_vertices) {
   mesh::VtuExtraArrays extra;
   std::vector<std::int64_t> source_vertex;
@@ -87,12 +84,12 @@ cut::BladeLimits LimitsForMeshSize(double diagonal) {
 namespace {
 
 // The checks after a pose (every pose with --check every, else after the withdrawal only):
-// validity, conformity and volume, the lag, and the trace and dump files.
-template <typename Cutter>
+// validity, conformity and volume, the step's coverage, and the trace and dump files.
 class PoseChecks {
  public:
-  PoseChecks(mesh::TetMesh* m, const Cutter* cutter, const std::vector<cut::BladePose>& poses,
-             lab::FidelityMeter* fidelity, const CutOptions& options, kerf::v1::CutReport* report)
+  PoseChecks(mesh::TetMesh* m, const cut::CrackCutter* cutter,
+             const std::vector<cut::BladePose>& poses, lab::FidelityMeter* fidelity,
+             const CutOptions& options, kerf::v1::CutReport* report)
       : m_(m),
         cutter_(cutter),
         poses_(poses),
@@ -101,8 +98,7 @@ class PoseChecks {
         report_(report),
         original_vertices_(m->vertex_index_bound()),
         volume_(TotalRestVolume(*m)),
-        uncut_(*m),
-        lag_meter_(*m) {}
+        uncut_(*m) {}
 
   absl::Status Open() {
     if (!options_.trace_path.empty()) {
@@ -138,33 +134,19 @@ class PoseChecks {
                                                 ": ", valid_status.message()));
       }
     }
-    cut::PoseLag lag;
     double covered = 1;
-    if (!withdrawn) {
-      lag = lag_meter_.Measure(poses_[i], crack_area);
-      lag_sum_ += lag.lag_area;
-      report_->set_max_lag_area(std::max(report_->max_lag_area(), lag.lag_area));
-      report_->set_max_lag_distance(std::max(report_->max_lag_distance(), lag.lag_distance));
-      report_->set_max_lag_steps(
-          std::max(report_->max_lag_steps(), static_cast<std::uint32_t>(lag.lag_steps)));
-      if (lag.lag_steps > 0) report_->set_poses_lagging(report_->poses_lagging() + 1);
-      if (fidelity_ != nullptr && i > 0) {
-        covered = fidelity_->StepCoverage(fidelity_->FindCrack(*m_), i - 1);
-        if (covered < 1) report_->set_poses_not_covered(report_->poses_not_covered() + 1);
-        report_->set_min_step_coverage(std::min(report_->min_step_coverage(), covered));
-      }
+    if (!withdrawn && fidelity_ != nullptr && i > 0) {
+      covered = fidelity_->StepCoverage(fidelity_->FindCrack(*m_), i - 1);
+      if (covered < 1) report_->set_poses_not_covered(report_->poses_not_covered() + 1);
+      report_->set_min_step_coverage(std::min(report_->min_step_coverage(), covered));
     }
-    if (trace_ != nullptr) Trace(i, valid, crack_area, lag, covered);
+    if (trace_ != nullptr) Trace(i, valid, crack_area, covered);
     if (options_.dump_directory.empty()) return absl::OkStatus();
     char name[32];
     std::snprintf(name, sizeof name, "pose-%04zu.vtu", i);
     const std::filesystem::path file =
         std::filesystem::path(options_.dump_directory) / (withdrawn ? "withdrawn.vtu" : name);
     return mesh::WriteTextFile(file.string(), CutMeshVtu(*m_, *cutter_, original_vertices_));
-  }
-
-  double mean_lag_area() const {
-    return poses_.empty() ? 0 : lag_sum_ / static_cast<double>(poses_.size());
   }
 
  private:
@@ -180,8 +162,7 @@ class PoseChecks {
         [&](mesh::VertexId v) { return cutter_->PartedFrom(v); });
   }
 
-  void Trace(std::size_t i, bool valid, double crack_area, const cut::PoseLag& lag,
-             double covered) {
+  void Trace(std::size_t i, bool valid, double crack_area, double covered) {
     const bool withdrawn = i == poses_.size();
     const cut::PoseSummary& pose = cutter_->last_pose();
     std::string cases;
@@ -192,19 +173,14 @@ class PoseChecks {
     const std::string line = absl::StrCat(
         "{\"pose\":", i, ",\"withdrawn\":", withdrawn ? "true" : "false", ",\"cases\":{", cases,
         "},\"open_tets\":", withdrawn ? 0 : pose.open_tets,
-        ",\"temporary_tets\":", withdrawn ? 0 : pose.temporary_tets,
-        ",\"held\":", !withdrawn && pose.held ? "true" : "false", ",\"tets\":", m_->tet_count(),
+        ",\"temporary_tets\":", withdrawn ? 0 : pose.temporary_tets, ",\"tets\":", m_->tet_count(),
         ",\"valid\":", valid ? "true" : "false", ",\"open_area\":", crack_area,
-        withdrawn ? ""
-                  : absl::StrCat(",\"swept_area\":", lag.swept_area, ",\"lag_area\":", lag.lag_area,
-                                 ",\"lag_distance\":", lag.lag_distance,
-                                 ",\"lag_steps\":", lag.lag_steps, ",\"step_coverage\":", covered),
-        "}\n");
+        withdrawn ? "" : absl::StrCat(",\"step_coverage\":", covered), "}\n");
     std::fputs(line.c_str(), trace_);
   }
 
   mesh::TetMesh* m_;
-  const Cutter* cutter_;
+  const cut::CrackCutter* cutter_;
   const std::vector<cut::BladePose>& poses_;
   lab::FidelityMeter* fidelity_;
   const CutOptions& options_;
@@ -212,8 +188,6 @@ class PoseChecks {
   std::uint32_t original_vertices_;
   double volume_;
   mesh::TetMesh uncut_;
-  cut::LagMeter lag_meter_;
-  double lag_sum_ = 0;
   std::FILE* trace_ = nullptr;
 };
 
@@ -230,11 +204,6 @@ void ReportStatistics(const cut::CutStatistics& s, kerf::v1::CutReport* report) 
   }
   report->set_rebuilt(static_cast<std::uint32_t>(s.rebuilt));
   report->set_moved(static_cast<std::uint32_t>(s.moved));
-  report->set_held_poses(static_cast<std::uint32_t>(s.held_poses));
-  report->set_frozen_tets(static_cast<std::uint32_t>(s.frozen_tets));
-  report->set_nonconforming_plans(static_cast<std::uint32_t>(s.nonconforming_plans));
-  report->set_thin_temporary_plans(static_cast<std::uint32_t>(s.thin_temporary_plans));
-  report->set_uncovered_temporary_plans(static_cast<std::uint32_t>(s.uncovered_temporary_plans));
   report->set_cut_tets(static_cast<std::uint32_t>(s.cut_tets));
   report->set_new_tets(static_cast<std::uint32_t>(s.new_tets));
   report->set_new_per_cut(s.cut_tets ? static_cast<double>(s.new_tets) / s.cut_tets : 0.0);
@@ -243,22 +212,14 @@ void ReportStatistics(const cut::CutStatistics& s, kerf::v1::CutReport* report) 
   report->set_case_iii(static_cast<std::uint32_t>(s.tets_by_case[3]));
   report->set_case_iv(static_cast<std::uint32_t>(s.tets_by_case[4]));
   report->set_case_v(static_cast<std::uint32_t>(s.tets_by_case[5]));
-  report->set_dropped_hits(static_cast<std::uint32_t>(s.dropped_hits));
-  report->set_degenerate_hits(static_cast<std::uint32_t>(s.degenerate_hits));
   report->set_snapped_vertices(static_cast<std::uint32_t>(s.snapped_vertices));
-  report->set_snapped_hits(static_cast<std::uint32_t>(s.snapped_hits));
-  report->set_unsnapped_vertices(static_cast<std::uint32_t>(s.unsnapped_vertices));
   report->set_parted_vertices(static_cast<std::uint32_t>(s.parted_vertices));
-  report->set_edge_snapped_hits(static_cast<std::uint32_t>(s.edge_snapped_hits));
-  report->set_unsnapped_edges(static_cast<std::uint32_t>(s.unsnapped_edges));
-  report->set_opened_edges(static_cast<std::uint32_t>(s.opened_edges));
   report->set_split_edge_tets(static_cast<std::uint32_t>(
       s.tets_by_case[static_cast<std::size_t>(cut::CutCase::kSplitEdge)]));
 }
 
 // The quality of the tets the cut made: the smallest dihedral angle and the slivers.
-template <typename Cutter>
-void ReportNewTetQuality(const mesh::TetMesh& m, const Cutter& cutter,
+void ReportNewTetQuality(const mesh::TetMesh& m, const cut::CrackCutter& cutter,
                          kerf::v1::CutReport* report) {
   double min_angle = 0;
   std::uint32_t slivers = 0, under_one = 0;
@@ -282,15 +243,14 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-template <typename Cutter>
-absl::StatusOr<kerf::v1::CutReport> CutWith(Cutter* cutter, mesh::TetMesh* m,
+absl::StatusOr<kerf::v1::CutReport> CutWith(cut::CrackCutter* cutter, mesh::TetMesh* m,
                                             const std::vector<cut::BladePose>& poses,
                                             absl::string_view path_name, const CutOptions& options,
                                             kerf::v1::CutReport report) {
   std::optional<lab::FidelityMeter> fidelity;
   if (AtRest(*m)) fidelity.emplace(*m);
   const std::uint32_t original_vertices = m->vertex_index_bound();
-  PoseChecks<Cutter> checks(m, cutter, poses, fidelity ? &*fidelity : nullptr, options, &report);
+  PoseChecks checks(m, cutter, poses, fidelity ? &*fidelity : nullptr, options, &report);
   absl::Status status = checks.Open();
   const bool every = options.check == CheckWhen::kEveryPose;
   double cut_seconds = 0, check_seconds = 0;
@@ -338,7 +298,6 @@ absl::StatusOr<kerf::v1::CutReport> CutWith(Cutter* cutter, mesh::TetMesh* m,
     status = mesh::WriteTextFile(options.out_path, CutMeshVtu(*m, *cutter, original_vertices));
     if (!status.ok()) return status;
   }
-  if (every) report.set_mean_lag_area(checks.mean_lag_area());
   ReportStatistics(cutter->statistics(), &report);
   report.set_tets_after(static_cast<std::uint32_t>(m->tet_count()));
   ReportNewTetQuality(*m, *cutter, &report);
@@ -364,18 +323,11 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* m,
   const double cell_size = mesh::MeanEdgeLength(*m);
   const cut::BladeLimits limits =
       LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal());
-  if (options.cutter == CutterKind::kCrack) {
-    const double snap =
-        options.snap_fraction > 0 ? options.snap_fraction : cut::kDefaultCrackSnapFraction;
-    report.set_mode(absl::StrCat("crack, ", report.mode()));
-    report.set_snap_fraction(snap);
-    absl::StatusOr<cut::CrackCutter> cutter =
-        cut::CrackCutter::Create(m, cell_size, limits, options.mode, snap);
-    if (!cutter.ok()) return cutter.status();
-    return CutWith(&*cutter, m, poses, path_name, options, std::move(report));
-  }
-  absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(
-      m, cell_size, limits, options.mode, options.min_temporary_height, options.snap_fraction);
+  absl::StatusOr<cut::CrackCutter> cutter =
+      cut::CrackCutter::Create(m, cell_size, limits,
+                               {.mode = options.mode,
+                                .snap_fraction = options.snap_fraction,
+                                .min_temporary_height = options.min_temporary_height});
   if (!cutter.ok()) return cutter.status();
   return CutWith(&*cutter, m, poses, path_name, options, std::move(report));
 }
@@ -408,10 +360,6 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
     if (!value.ok()) return value.status();
     if (value->has_value()) *into = std::string((**value)[0]);
   }
-  absl::StatusOr<std::optional<absl::string_view>> cutter =
-      rest.TakeChoice("--cutter", {"cases", "crack"}, kUsage);
-  if (!cutter.ok()) return cutter.status();
-  if (*cutter == "crack") options.cutter = CutterKind::kCrack;
   absl::StatusOr<std::optional<absl::string_view>> check =
       rest.TakeChoice("--check", {"every", "end"}, kUsage);
   if (!check.ok()) return check.status();

@@ -1,5 +1,6 @@
 // kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end]
-// [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a
+// [--uncovered OUT.csv] [--min-temporary-height F] [--snap F] [--trace OUT.jsonl]
+// [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a
 // scene (its initial state: rest, or the static solution of a STATIC scene) and writes the result.
 // OUT.vtu has the current positions as points, the point arrays rest_position and source_vertex
 // (the original vertex id, -1 for a vertex the cut made) and the cell array source_tet (the
@@ -12,7 +13,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "cut/blade.h"
-#include "cut/cutter.h"
+#include "cut/crack_cutter.h"
 #include "kerf/v1/cut_report.pb.h"
 #include "mesh/tet_mesh.h"
 #include "sim/scene.h"
@@ -21,27 +22,23 @@ namespace kerf::cli {
 
 absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& args);
 
-// When kerf cut checks the mesh (valid, conforming, volume kept) and measures the lag. Unset on
-// the command line: at the end, or every pose when a trace or dump asks for every pose.
+// When kerf cut checks the mesh (valid, conforming, volume kept) and measures each step's
+// coverage. Unset on the command line: at the end, or every pose when a trace or dump asks for
+// every pose.
 enum class CheckWhen { kEnd, kEveryPose };
 
-// Which cutter cuts: cut::Cutter (the cases and their fallbacks: progressive or deferred) or
-// cut::CrackCutter (total steps; deferred).
-enum class CutterKind { kCases, kCrack };
-
 struct CutOptions {
-  CutterKind cutter = CutterKind::kCases;
   CheckWhen check = CheckWhen::kEnd;
   cut::CutMode mode = cut::CutMode::kProgressive;
-  double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // progressive: see the cutter
-  double snap_fraction = cut::kDefaultSnapFraction;               // deferred: see the cutter
+  double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // see cut::CrackCutterOptions
+  double snap_fraction = cut::kDefaultCrackSnapFraction;          // see cut::CrackCutterOptions
   // Non-empty: the cut mesh as VTU (current positions as points; the arrays rest_position,
   // source_vertex and source_tet).
   std::string out_path;
   // Non-empty: the swept surface's samples no crack face covers, as CSV (x, y, z, local edge).
   std::string uncovered_path;
   // Non-empty: one JSON line per pose (and one after the blade is withdrawn): the Table 1
-  // cases of the tets the blade is in, tets alive, valid, and the lag (cut::LagMeter).
+  // cases of the tets the blade is in, tets alive, valid, and the step's coverage.
   std::string trace_path;
   // Non-empty: the mesh after every pose as DIR/pose-NNNN.vtu (arrays as OUT.vtu), and after
   // the blade is withdrawn as DIR/withdrawn.vtu. The folder is made if needed.

@@ -20,15 +20,10 @@ constexpr absl::string_view kUsage =
 
 struct Cutting {
   const char* name;
-  CutterKind cutter;
   cut::CutMode mode;
 };
-constexpr Cutting kCuttings[] = {
-    {"cases, progressive", CutterKind::kCases, cut::CutMode::kProgressive},
-    {"cases, deferred", CutterKind::kCases, cut::CutMode::kDeferred},
-    {"crack, progressive", CutterKind::kCrack, cut::CutMode::kProgressive},
-    {"crack, deferred", CutterKind::kCrack, cut::CutMode::kDeferred},
-};
+constexpr Cutting kCuttings[] = {{"progressive", cut::CutMode::kProgressive},
+                                 {"deferred", cut::CutMode::kDeferred}};
 constexpr lab::PathFamily kFamilies[] = {lab::PathFamily::kHand, lab::PathFamily::kThroughVertices,
                                          lab::PathFamily::kAlongEdges,
                                          lab::PathFamily::kInFacePlane};
@@ -40,7 +35,7 @@ struct Row {
   double min_coverage = 1, coverage = 0, min_dihedral = 180, seconds = 0;
   std::size_t made = 0;  // tets the cut made, alive at the end
   std::size_t poses = 0, lagging = 0, overcut = 0, unpaired = 0, cut_tets = 0, new_tets = 0,
-              slivers = 0, under_one = 0, invalid = 0, dropped = 0, held = 0, frozen = 0;
+              slivers = 0, under_one = 0, invalid = 0;
 };
 
 void Add(const kerf::v1::CutReport& r, Row* row) {
@@ -59,9 +54,6 @@ void Add(const kerf::v1::CutReport& r, Row* row) {
   row->made += r.tets_after() + r.cut_tets() - r.tets_before();
   row->under_one += r.new_tets_under_1deg();
   row->invalid += r.invalid_poses();
-  row->dropped += r.dropped_hits();
-  row->held += r.held_poses();
-  row->frozen += r.frozen_tets();
 }
 
 }  // namespace
@@ -114,7 +106,6 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
           const std::vector<cut::BladePose> poses =
               lab::MakeHandPath(tissue, family, static_cast<std::uint64_t>(seed));
           CutOptions options;
-          options.cutter = cutting.cutter;
           options.mode = cutting.mode;
           options.check = check;
           absl::StatusOr<kerf::v1::CutReport> report =
@@ -131,24 +122,21 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
   std::string out = absl::StrCat(
       "hand-cuts: ", seeds, " seeds per family, check ",
       check == CheckWhen::kEveryPose ? "every pose" : "at the end",
-      "\n\n| mesh | family | cutter, mode | coverage min / mean | overcut faces | unpaired | "
+      "\n\n| mesh | family | mode | coverage min / mean | overcut faces | unpaired | "
       "new per cut | min dihedral (deg) | new tets under 5 deg | under 1 deg | poses lagging | "
-      "invalid | dropped / held / frozen | us per pose |\n"
-      "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
+      "invalid | us per pose |\n"
+      "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     absl::StrAppendFormat(
         &out,
-        "| %s | %s | %s | %.3f / %.3f | %u | %u | %.2f | %.2f | %u of %u | %u | %s | %u | %u / %u "
-        "/ "
-        "%u | %.1f |\n",
+        "| %s | %s | %s | %.3f / %.3f | %u | %u | %.2f | %.2f | %u of %u | %u | %s | %u | %.1f |\n",
         r.mesh, r.family, r.cutting, r.min_coverage, r.coverage / r.paths, r.overcut, r.unpaired,
         r.cut_tets ? static_cast<double>(r.new_tets) / r.cut_tets : 0.0, r.min_dihedral, r.slivers,
         r.made, r.under_one,
         check == CheckWhen::kEveryPose
             ? absl::StrFormat("%.1f%%", 100.0 * r.lagging / std::max<std::size_t>(r.poses, 1))
             : std::string("-"),
-        r.invalid, r.dropped, r.held, r.frozen,
-        1e6 * r.seconds / std::max<std::size_t>(r.poses, 1));
+        r.invalid, 1e6 * r.seconds / std::max<std::size_t>(r.poses, 1));
   }
   return out;
 }

@@ -1,6 +1,6 @@
 // kerf experiment hand-cuts [--meshes FILE,...] [--seeds N] [--check every|end] [--json]: each
-// cutter and mode (the cases cutter, progressive and deferred; the crack cutter, progressive and
-// deferred) along seeded hand-like paths of every family (lab::MakeHandPath) through each mesh:
+// cutting mode (progressive, deferred) along seeded hand-like paths of every family
+// (lab::MakeHandPath) through each mesh:
 // where the cut is against the path (lab::FidelityMeter), its quality, its lag (with
 // --check every) and its time per pose. Meshes: the paper's 4 x 6 x 4 cm lattice at rest, unless
 // --meshes names mesh files or scenes.

@@ -78,17 +78,14 @@ std::string FormatStability(const kerf::v1::StabilityExperiment& experiment) {
       "largest "
       "energy ratio | "
       "critical step at the end (us) | step (us) | sub-steps (median, max) | smallest radius "
-      "ratio | smallest dihedral (deg) | cut tets | held | dropped | valid | wall s per "
-      "simulated s "
-      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "ratio | smallest dihedral (deg) | cut tets | valid | wall s per simulated s "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       experiment.settle_seconds(), experiment.slow_down(), experiment.pose_rate_hz(),
       experiment.blow_up_energy_ratio(), experiment.max_wall_seconds());
   for (const kerf::v1::LiveCutRow& r : experiment.rows()) {
     absl::StrAppendFormat(
         &out,
         "| %s | %s | %s | %s | %s | %s | %.3f | %s | %.3g | %.3g | %.4g | %u, %u | %.3g | %.3g | "
-        "%u | "
-        "%u | "
         "%u | %s | %.3g |\n",
         r.scene(), r.path(),
         r.snap_fraction() > 0 ? absl::StrFormat("%s, snap %g", r.cut_mode(), r.snap_fraction())
@@ -96,8 +93,8 @@ std::string FormatStability(const kerf::v1::StabilityExperiment& experiment) {
         r.integration(), r.law(), r.blew_up() ? "YES" : "no", r.blew_up_after(),
         StoppedAfterCell(r), r.largest_energy_ratio(), 1e6 * r.critical_time_step(),
         1e6 * r.time_step(), r.sub_steps_median(), r.sub_steps_max(), r.smallest_radius_ratio(),
-        r.smallest_dihedral_deg(), r.cut_tets(), r.held_poses(), r.dropped_hits(),
-        r.valid() ? "yes" : "NO", r.wall_seconds_per_simulated_second());
+        r.smallest_dihedral_deg(), r.cut_tets(), r.valid() ? "yes" : "NO",
+        r.wall_seconds_per_simulated_second());
   }
   return out;
 }

@@ -24,16 +24,20 @@ void SortUnique(std::vector<TetId>* v) {
 }  // namespace
 
 absl::StatusOr<CrackCutter> CrackCutter::Create(mesh::TetMesh* mesh, double cell_size,
-                                                const BladeLimits& limits, CutMode mode,
-                                                double snap_fraction) {
-  if (!(snap_fraction >= 0 && snap_fraction < 0.5)) {
+                                                const BladeLimits& limits,
+                                                const CrackCutterOptions& options) {
+  if (!(options.snap_fraction >= 0 && options.snap_fraction < 0.5)) {
     return absl::InvalidArgumentError(
-        absl::StrCat("the snap fraction must be in [0, 0.5), got ", snap_fraction));
+        absl::StrCat("the snap fraction must be in [0, 0.5), got ", options.snap_fraction));
+  }
+  if (!(options.min_temporary_height >= 0 && options.min_temporary_height < 1)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("the least temporary height must be a fraction in [0, 1), got ",
+                     options.min_temporary_height));
   }
   absl::StatusOr<BladeCrossings> crossings = BladeCrossings::Create(mesh, cell_size);
   if (!crossings.ok()) return crossings.status();
-  return CrackCutter(mesh, *std::move(crossings), limits, mode,
-                     std::max(snap_fraction, kMinSnapFraction));
+  return CrackCutter(mesh, *std::move(crossings), limits, options);
 }
 
 TetId CrackCutter::SourceTet(TetId t) const {
@@ -50,6 +54,38 @@ std::vector<MadeVertex> CrackCutter::TakeMadeVertices() {
   return made;
 }
 
+std::vector<mesh::TetVertices> CrackCutter::TetsHoldingBlade(const BladePose& pose) const {
+  std::vector<mesh::TetVertices> holding;
+  for (const TetId u : UnitsNear(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel))) {
+    if (!crossings_.BladeMeets(CornersOf(u), pose)) continue;
+    if (const auto it = open_.find(u); it != open_.end()) {
+      for (const TetId p : it->second.pieces) holding.push_back(mesh_->tet(p));
+    } else {
+      holding.push_back(mesh_->tet(u));
+    }
+  }
+  return holding;
+}
+
+double CrackCutter::StiffnessScale(TetId t) const {
+  const auto owner = owner_.find(t);
+  if (owner == owner_.end() || !mesh_->IsAlive(t)) return 1;
+  const mesh::TetVertices& piece = mesh_->tet(t);
+  const bool on_blade = std::any_of(piece.begin(), piece.end(), [&](VertexId v) {
+    const VertexId origin = parting_.Origin(v);
+    return std::any_of(temporary_.begin(), temporary_.end(),
+                       [&](const auto& entry) { return entry.second == origin; });
+  });
+  if (!on_blade) return 1;
+  const auto rest = [&](const mesh::TetVertices& c) {
+    return geometry::SmallestHeight(mesh_->rest_position(c[0]), mesh_->rest_position(c[1]),
+                                    mesh_->rest_position(c[2]), mesh_->rest_position(c[3]));
+  };
+  const double guard = min_temporary_height_ * rest(open_.at(owner->second).corners);
+  const double height = rest(piece);
+  return height < guard ? height / guard : 1;
+}
+
 TetId CrackCutter::UnitOf(TetId t) const {
   const auto it = owner_.find(t);
   return it == owner_.end() ? t : it->second;
@@ -60,6 +96,45 @@ mesh::TetVertices CrackCutter::CornersOf(TetId unit) const {
   mesh::TetVertices corners = mesh_->tet(unit);
   for (VertexId& v : corners) v = parting_.Origin(v);
   return corners;
+}
+
+mesh::TetVertices CrackCutter::PlacedCorners(TetId unit) const {
+  const auto open = open_.find(unit);
+  if (open == open_.end()) return mesh_->tet(unit);
+  const mesh::TetVertices& corners = open->second.corners;
+  mesh::TetVertices placed = corners;
+  std::array<bool, 4> found{};
+  for (const TetId p : open->second.pieces) {
+    for (const VertexId v : mesh_->tet(p)) {
+      for (int k = 0; k < 4; ++k) {
+        if (!found[k] && corners[k] == parting_.Origin(v)) placed[k] = v, found[k] = true;
+      }
+    }
+  }
+  return placed;
+}
+
+std::vector<mesh::TetVertices> CrackCutter::PlacedCornersOfAll(
+    const std::vector<TetId>& units) const {
+  std::vector<mesh::TetVertices> placed;
+  for (const TetId u : units) placed.push_back(PlacedCorners(u));
+  return placed;
+}
+
+Crossings CrackCutter::ByOrigins(Crossings found) const {
+  for (EdgeCrossing& c : found.edges) {
+    c.low = parting_.Origin(c.low);
+    c.high = parting_.Origin(c.high);
+    if (Index(c.high) < Index(c.low)) std::swap(c.low, c.high), c.fraction = 1 - c.fraction;
+  }
+  for (FaceCrossing& c : found.faces) {
+    std::array<std::pair<VertexId, double>, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = {parting_.Origin(c.face[k]), c.barycentric[k]};
+    std::sort(corners.begin(), corners.end(),
+              [](const auto& a, const auto& b) { return Index(a.first) < Index(b.first); });
+    for (int k = 0; k < 3; ++k) c.face[k] = corners[k].first, c.barycentric[k] = corners[k].second;
+  }
+  return found;
 }
 
 std::vector<TetId> CrackCutter::UnitsNear(const Eigen::Vector3d& low,
@@ -95,15 +170,20 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
       !valid.ok()) {
     return valid;
   }
+  last_pose_ = {};
   if (previous_) {
     const BladePose& from = *previous_;
     const std::vector<TetId> near =
         UnitsNear(from.tip.cwiseMin(from.heel).cwiseMin(pose.tip).cwiseMin(pose.heel),
                   from.tip.cwiseMax(from.heel).cwiseMax(pose.tip).cwiseMax(pose.heel));
-    const Crossings found = crossings_.Find(
-        from, pose, CornersOfAll(near),
-        [&](VertexId a, VertexId b) { return edge_points_.contains(MakeEdgeKey(a, b)); },
-        [&](const std::array<VertexId, 3>& face) { return face_points_.contains(face); });
+    const Crossings found = ByOrigins(crossings_.Find(
+        from, pose, PlacedCornersOfAll(near),
+        [&](VertexId a, VertexId b) {
+          return edge_points_.contains(MakeEdgeKey(parting_.Origin(a), parting_.Origin(b)));
+        },
+        [&](const std::array<VertexId, 3>& f) {
+          return face_points_.contains(parting_.OriginKey(f[0], f[1], f[2]));
+        }));
     std::vector<TetId> touched;
     RecordCrossings(found, &touched);
     SnapVerticesNear(from, pose, near, &touched);
@@ -137,7 +217,6 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
       near_blade.push_back(parting_.Origin(v));
     }
   }
-  last_pose_ = {};
   last_pose_.open_tets = open_.size();
   for (const auto& [u, open] : open_) last_pose_.temporary_tets += open.pieces.size();
   return crossings_.Remember(near_blade);
@@ -150,9 +229,11 @@ void CrackCutter::Finish() {
     const BladePose& at = *previous_;
     Crossings crossed;
     crossed.faces = crossings_.FacesCrossedBy(
-        at, CornersOfAll(UnitsNear(at.tip.cwiseMin(at.heel), at.tip.cwiseMax(at.heel))),
-        [&](const std::array<VertexId, 3>& f) { return face_points_.contains(f); });
-    RecordCrossings(crossed, &touched);
+        at, PlacedCornersOfAll(UnitsNear(at.tip.cwiseMin(at.heel), at.tip.cwiseMax(at.heel))),
+        [&](const std::array<VertexId, 3>& f) {
+          return face_points_.contains(parting_.OriginKey(f[0], f[1], f[2]));
+        });
+    RecordCrossings(ByOrigins(std::move(crossed)), &touched);
   }
   Join(touched);
   if (mode_ == CutMode::kProgressive) {
@@ -210,15 +291,16 @@ void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
                                    const std::vector<TetId>& units, std::vector<TetId>* touched) {
   absl::flat_hash_set<VertexId> seen;
   for (const TetId u : units) {
-    const mesh::TetVertices corners = CornersOf(u);
+    const mesh::TetVertices corners = CornersOf(u), placed = PlacedCorners(u);
     double edges = 0;
     for (const auto& [i, j] : mesh::kTetEdges) {
-      edges += (mesh_->current_position(corners[i]) - mesh_->current_position(corners[j])).norm();
+      edges += (mesh_->current_position(placed[i]) - mesh_->current_position(placed[j])).norm();
     }
     const double within = snap_fraction_ * edges / 6;
-    for (const VertexId v : corners) {
+    for (int k = 0; k < 4; ++k) {
+      const VertexId v = corners[k];
       if (on_crack_.contains(v) || !seen.insert(v).second) continue;
-      const Eigen::Vector3d& x = mesh_->current_position(v);
+      const Eigen::Vector3d& x = mesh_->current_position(placed[k]);
       const double distance =
           std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),
                    geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
@@ -236,9 +318,9 @@ void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {
 
 std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const BladePose& pose,
                                                              BladeFaceCrossings* faces) const {
-  const mesh::TetVertices corners = CornersOf(unit);
+  const mesh::TetVertices corners = CornersOf(unit), placed = PlacedCorners(unit);
   std::array<Eigen::Vector3d, 4> x;
-  for (int k = 0; k < 4; ++k) x[k] = mesh_->current_position(corners[k]);
+  for (int k = 0; k < 4; ++k) x[k] = mesh_->current_position(placed[k]);
   BladeIn in;
   bool meets = geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip) ||
                geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.heel);
@@ -249,13 +331,18 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
     const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
     auto [at, inserted] = faces->try_emplace(key);
     if (inserted) {
-      at->second = geometry::IntersectSegmentTriangle(
-          pose.tip, pose.heel, mesh_->current_position(key[0]), mesh_->current_position(key[1]),
-          mesh_->current_position(key[2]));
+      std::array<Eigen::Vector3d, 3> y;  // the face's corners in key order
+      for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i) {
+          if (corners[f[i]] == key[j]) y[j] = x[f[i]];
+        }
+      }
+      at->second = geometry::IntersectSegmentTriangle(pose.tip, pose.heel, y[0], y[1], y[2]);
     }
     const auto& crossing = at->second;
     if (!crossing) continue;
     meets = true;
+    in.crossed.push_back(key);
     first = std::min(first, crossing->t);
     last = std::max(last, crossing->t);
     if (!face_points_.contains(key) && crossing->barycentric.minCoeff() >= kMinTemporaryWeight) {
@@ -266,6 +353,7 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
   Eigen::Vector3d point = 0.25 * (x[0] + x[1] + x[2] + x[3]);
   if (geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip)) {
     point = pose.tip;
+    in.tip_inside = true;
   } else if (first <= last) {
     point = pose.tip + 0.5 * (first + last) * (pose.heel - pose.tip);
   }

@@ -31,12 +31,29 @@
 #include "cut/blade.h"
 #include "cut/blade_crossings.h"
 #include "cut/crack_split.h"
-#include "cut/cutter.h"
+#include "cut/cut_statistics.h"
 #include "cut/star_parting.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "mesh/tet_mesh.h"
 
 namespace kerf::cut {
+
+// Where a vertex the cut made comes from: weights on up to four vertices (an edge's two, a
+// face's three, a tet's four), the same for its rest and current positions. Data attached to
+// vertices (displacement, velocity) follows it by the same weights.
+struct MadeVertex {
+  mesh::VertexId vertex;
+  std::array<mesh::VertexId, 4> from;  // unused entries have weight 0
+  Eigen::Vector4d weights;
+};
+
+enum class CutMode { kProgressive, kDeferred };
+
+// Progressive: a piece on the blade lower than this fraction of the smallest height of the tet
+// it stands in for is softened (CrackCutter::StiffnessScale): the elastic model makes it no
+// stiffer than a piece of this height, so the slivers a blade near an edge makes do not slow the
+// implicit solve, while the opening still follows the blade.
+inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 
 // Crossings closer than this to a corner are always taken at it, whatever the snap fraction.
 inline constexpr double kMinSnapFraction = 0.01;
@@ -46,15 +63,21 @@ inline constexpr double kDefaultCrackSnapFraction = 0.2;
 // (their thin pieces last only while the blade is in their tet).
 inline constexpr double kMinTemporaryWeight = 1e-3;
 
+struct CrackCutterOptions {
+  CutMode mode = CutMode::kProgressive;
+  // In [0, 0.5); below kMinSnapFraction it is that.
+  double snap_fraction = kDefaultCrackSnapFraction;
+  // In [0, 1): see kDefaultMinTemporaryHeight (0: no piece is soft).
+  double min_temporary_height = kDefaultMinTemporaryHeight;
+};
+
 class CrackCutter {
  public:
   // The mesh must outlive the cutter and change only through it while it cuts. `cell_size` (m):
-  // a mean edge length is a good choice. `snap_fraction` in [0, 0.5) (below kMinSnapFraction it
-  // is that). INVALID_ARGUMENT for a bad size or fraction.
+  // a mean edge length is a good choice. INVALID_ARGUMENT for a bad size or option.
   static absl::StatusOr<CrackCutter> Create(mesh::TetMesh* mesh, double cell_size,
                                             const BladeLimits& limits = {},
-                                            CutMode mode = CutMode::kProgressive,
-                                            double snap_fraction = kDefaultCrackSnapFraction);
+                                            const CrackCutterOptions& options = {});
 
   // Applies one pose. INVALID_ARGUMENT (and nothing changed) for a bad pose. The first pose only
   // places the blade.
@@ -69,11 +92,27 @@ class CrackCutter {
   // Tets with points not split for good.
   std::size_t waiting_tets() const { return group_of_.size() + open_.size(); }
   mesh::TetId SourceTet(mesh::TetId t) const;
-  bool MadeByCut(mesh::TetId t) const { return source_tet_.contains(t); }
+  // Whether `t` is a piece of a tet split in two or more (not one the blade opened and left
+  // whole again).
+  bool MadeByCut(mesh::TetId t) const {
+    const auto it = source_tet_.find(t);
+    if (it == source_tet_.end()) return false;
+    const auto pieces = pieces_of_source_.find(it->second);  // none: renamed by parting only
+    return pieces != pieces_of_source_.end() && pieces->second >= 2;
+  }
   // The vertex `v` is a copy of (v itself if it is none).
   mesh::VertexId PartedFrom(mesh::VertexId v) const { return parting_.Origin(v); }
   // The vertices made or moved since the last call that are still alive.
   std::vector<MadeVertex> TakeMadeVertices();
+
+  // The corners of the tets the blade at `pose` meets (current positions): of each piece of a
+  // tet the blade is opening, of every other tet itself. O(tets near the blade).
+  std::vector<mesh::TetVertices> TetsHoldingBlade(const BladePose& pose) const;
+  // The share of its stiffness the elastic model gives `t`: for a piece with a point on the
+  // blade (progressive) lower than min_temporary_height times the smallest height of the tet it
+  // stands in for, its height over that guard, so it is no stiffer than a piece of the guard's
+  // height; 1 for every other tet. Rest positions. O(points on the blade).
+  double StiffnessScale(mesh::TetId t) const;
 
  private:
   struct EdgePoint {
@@ -93,17 +132,21 @@ class CrackCutter {
   };
   // The blade's points in a tet it meets now.
   struct BladeIn {
-    absl::flat_hash_map<FaceKey, Eigen::Vector3d, FaceKeyHash> faces;  // crossings, barycentric
-    Eigen::Vector4d apex;  // the crack's point inside: the tip, or the chord's middle
+    // Crossings of faces with no point for good, barycentric: temporary points.
+    absl::flat_hash_map<FaceKey, Eigen::Vector3d, FaceKeyHash> faces;
+    std::vector<FaceKey> crossed;  // every face the blade crosses
+    Eigen::Vector4d apex;          // the crack's point inside: the tip, or the chord's middle
+    bool tip_inside = false;
   };
 
   CrackCutter(mesh::TetMesh* mesh, BladeCrossings crossings, const BladeLimits& limits,
-              CutMode mode, double snap_fraction)
+              const CrackCutterOptions& options)
       : mesh_(mesh),
         crossings_(std::move(crossings)),
         limits_(limits),
-        mode_(mode),
-        snap_fraction_(snap_fraction) {}
+        mode_(options.mode),
+        snap_fraction_(std::max(options.snap_fraction, kMinSnapFraction)),
+        min_temporary_height_(options.min_temporary_height) {}
 
   // The place of an open tet's apex among the temporary points (faces' places have the high bit
   // clear).
@@ -113,6 +156,13 @@ class CrackCutter {
   // A tet as the crack sees it: a live tet, or an open tet (by its id before it opened).
   mesh::TetId UnitOf(mesh::TetId t) const;
   mesh::TetVertices CornersOf(mesh::TetId unit) const;  // origins
+  // The ids the unit's tets use for its corners, in CornersOf's order: where a corner was parted,
+  // the copy on the unit's side, whose positions and state are the unit's (the first found where
+  // the unit's own crack parts the corner).
+  mesh::TetVertices PlacedCorners(mesh::TetId unit) const;
+  std::vector<mesh::TetVertices> PlacedCornersOfAll(const std::vector<mesh::TetId>& units) const;
+  // Crossings found on placed ids, named by origins.
+  Crossings ByOrigins(Crossings found) const;
   // The units with a tet whose box meets [low, high].
   std::vector<mesh::TetId> UnitsNear(const Eigen::Vector3d& low, const Eigen::Vector3d& high) const;
   std::vector<mesh::TetId> UnitsAround(const std::vector<mesh::VertexId>& origins) const;
@@ -142,20 +192,32 @@ class CrackCutter {
                   const absl::flat_hash_map<mesh::TetId, BladeIn>& blade);
   // Splits one unit; returns the origins whose parting may have changed.
   std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade);
+  // The unit's case of the paper's Table 1 with the blade in it (0: none of the eleven).
+  int TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const;
   // Whether the pieces (live tets) are the split's tets, up to copies and orientation.
   bool SamePieces(const std::vector<mesh::TetId>& pieces,
                   const std::vector<mesh::TetVertices>& split) const;
   std::array<FacePoints, 4> PointsOf(const mesh::TetVertices& corners, const BladeIn* blade);
   mesh::VertexId EdgePointVertex(mesh::VertexId a, mesh::VertexId b);
   mesh::VertexId FacePointVertex(const FaceKey& key);
-  mesh::VertexId TemporaryVertex(std::uint64_t place, const std::array<mesh::VertexId, 4>& from,
+  // New points (and temporary ones moved) take their positions, and the state the simulation
+  // gives them, from `origins` as the unit being split places them (Placed).
+  mesh::VertexId TemporaryVertex(std::uint64_t place, const std::array<mesh::VertexId, 4>& origins,
                                  const Eigen::Vector4d& weights);
   // The apex of a cone for good: the middle of the crack's trace points pulled inside, or the
   // tet's middle.
   Eigen::Vector4d ApexWeights(const TetCrack& crack) const;
-  mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& from,
+  mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& origins,
                             const Eigen::Vector4d& weights);
+  // `from` (origins) as the ids of the unit being split (placing_ids_).
+  std::array<mesh::VertexId, 4> Placed(std::array<mesh::VertexId, 4> from) const;
+  // `origins` as the tets around `v` name them; none if they lack one `weights` uses.
+  std::optional<std::array<mesh::VertexId, 4>> PlacedAround(mesh::VertexId v,
+                                                            std::array<mesh::VertexId, 4> origins,
+                                                            const Eigen::Vector4d& weights) const;
   // Puts `pieces` (oriented on rest positions) in place of the unit's tets.
+  // Keeps cut_tets and new_tets: the tissue's tets standing in two pieces or more, and those.
+  void CountPieces(mesh::TetId source, std::size_t removed, std::size_t added);
   std::vector<mesh::TetId> Replace(mesh::TetId unit, const std::vector<mesh::TetVertices>& pieces);
   void Repart(const std::vector<mesh::VertexId>& origins);
   void AddCrack(const FaceKey& key) { ++crack_[key]; }
@@ -180,6 +242,7 @@ class CrackCutter {
   BladeLimits limits_;
   CutMode mode_;
   double snap_fraction_;
+  double min_temporary_height_;
   std::optional<BladePose> previous_;
   VertexParting parting_;
   absl::flat_hash_map<EdgeKey, EdgePoint> edge_points_;               // by origins
@@ -195,7 +258,11 @@ class CrackCutter {
   absl::flat_hash_map<mesh::TetId, mesh::TetId> group_of_;
   absl::flat_hash_map<mesh::TetId, std::vector<mesh::TetId>> members_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> source_tet_;
+  // How many pieces a tissue's tet stands in now, for those ever replaced.
+  absl::flat_hash_map<mesh::TetId, std::size_t> pieces_of_source_;
   std::vector<MadeVertex> made_vertices_;
+  // The unit being split: its corners (origins) and their placed ids.
+  mesh::TetVertices placing_origins_{}, placing_ids_{};
   CutStatistics statistics_;
   PoseSummary last_pose_;
 };

@@ -70,6 +70,13 @@ bool CrackCutter::SamePieces(const std::vector<TetId>& pieces,
 
 std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
   const mesh::TetVertices corners = CornersOf(unit);
+  placing_origins_ = corners;
+  placing_ids_ = PlacedCorners(unit);
+  if (blade != nullptr) {
+    const int table_case = TableCase(corners, *blade);
+    ++statistics_.poses_by_case[table_case];
+    ++last_pose_.tets_by_case[table_case];
+  }
   const TetCrack crack = MakeTetCrack(corners, PointsOf(corners, blade));
   const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
   std::optional<CrackSplit> split = SplitWithoutApex(crack, rest);
@@ -121,6 +128,27 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
   for (const TetId p : pieces) owner_[p] = unit;
   open_[unit] = {corners, source, std::move(pieces), std::move(crack_faces)};
   return to_part;
+}
+
+int CrackCutter::TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const {
+  std::vector<std::pair<VertexId, VertexId>> cut;
+  for (const auto& [i, j] : mesh::kTetEdges) {
+    if (edge_points_.contains(MakeEdgeKey(corners[i], corners[j]))) {
+      cut.emplace_back(corners[i], corners[j]);
+    }
+  }
+  // Table 1 counts the points for good on faces (where the tip's path went through) and the
+  // blade's crossings of faces (its temporary points), on a face with a point for good or not.
+  int faces = 0;
+  for (const auto& f : mesh::kTetFaces) {
+    faces += face_points_.contains(MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]));
+  }
+  const int temporary = static_cast<int>(blade.crossed.size());
+  const bool share_corner =
+      cut.size() == 2 && (cut[0].first == cut[1].first || cut[0].first == cut[1].second ||
+                          cut[0].second == cut[1].first || cut[0].second == cut[1].second);
+  return ProgressiveCase(static_cast<int>(cut.size()), faces, temporary, blade.tip_inside,
+                         share_corner);
 }
 
 std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners,
@@ -180,22 +208,26 @@ VertexId CrackCutter::FacePointVertex(const FaceKey& key) {
   return f.vertex;
 }
 
-VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<VertexId, 4>& from,
+VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<VertexId, 4>& origins,
                                       const Eigen::Vector4d& weights) {
   temporary_used_.insert(place);
   const auto it = temporary_.find(place);
   if (it == temporary_.end() || !mesh_->IsAlive(it->second)) {
-    return temporary_[place] = MakeVertex(from, weights);
+    return temporary_[place] = MakeVertex(origins, weights);
   }
-  Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 4; ++k) {
-    rest += weights[k] * mesh_->rest_position(from[k]);
-    current += weights[k] * mesh_->current_position(from[k]);
-  }
+  // Each copy moves with the side it is on: placed by the tets around it. A copy whose tets do
+  // not hold the points it is placed on (a chip the crack cut off) keeps its displacement.
   for (const VertexId v : parting_.Ids(it->second)) {
     if (!mesh_->IsAlive(v)) continue;
+    const std::optional<std::array<VertexId, 4>> from = PlacedAround(v, origins, weights);
+    Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) {
+      rest += weights[k] * mesh_->rest_position(origins[k]);
+      if (from) current += weights[k] * mesh_->current_position((*from)[k]);
+    }
+    if (!from) current = rest + mesh_->current_position(v) - mesh_->rest_position(v);
     KERF_CHECK(mesh_->MoveVertex(v, rest, current).ok());
-    made_vertices_.push_back({v, from, weights});
+    if (from) made_vertices_.push_back({v, *from, weights});
   }
   ++statistics_.moved;
   return it->second;
@@ -216,8 +248,33 @@ Eigen::Vector4d CrackCutter::ApexWeights(const TetCrack& crack) const {
   return PulledInside({1 - w.sum(), w.x(), w.y(), w.z()});
 }
 
-VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& from,
+std::array<VertexId, 4> CrackCutter::Placed(std::array<VertexId, 4> from) const {
+  for (VertexId& v : from) {
+    const auto at = std::find(placing_origins_.begin(), placing_origins_.end(), v);
+    if (at != placing_origins_.end()) v = placing_ids_[at - placing_origins_.begin()];
+  }
+  return from;
+}
+
+std::optional<std::array<VertexId, 4>> CrackCutter::PlacedAround(
+    VertexId v, std::array<VertexId, 4> origins, const Eigen::Vector4d& weights) const {
+  std::array<bool, 4> found{};
+  for (const TetId t : mesh_->TetsAround(v)) {
+    for (const VertexId w : mesh_->tet(t)) {
+      for (int k = 0; k < 4; ++k) {
+        if (!found[k] && origins[k] == parting_.Origin(w)) origins[k] = w, found[k] = true;
+      }
+    }
+  }
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] != 0 && !found[k]) return std::nullopt;
+  }
+  return origins;
+}
+
+VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& origins,
                                  const Eigen::Vector4d& weights) {
+  const std::array<VertexId, 4> from = Placed(origins);
   Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
   for (int k = 0; k < 4; ++k) {
     if (weights[k] == 0) continue;
@@ -235,11 +292,9 @@ std::vector<TetId> CrackCutter::Replace(TetId unit, const std::vector<mesh::TetV
   if (const auto it = open_.find(unit); it != open_.end()) {
     source = it->second.source;
     old = it->second.pieces;
-  } else if (!MadeByCut(unit)) {
-    ++statistics_.cut_tets;
   }
+  CountPieces(source, old.size(), pieces.size());
   for (const TetId t : old) {
-    if (MadeByCut(t)) --statistics_.new_tets;
     source_tet_.erase(t);
     owner_.erase(t);
     KERF_CHECK(mesh_->RemoveTet(t).ok());
@@ -254,10 +309,20 @@ std::vector<TetId> CrackCutter::Replace(TetId unit, const std::vector<mesh::TetV
     const absl::StatusOr<TetId> added = mesh_->AddTet(piece);
     KERF_CHECK(added.ok());
     source_tet_[*added] = source;
-    ++statistics_.new_tets;
     made.push_back(*added);
   }
   return made;
+}
+
+void CrackCutter::CountPieces(TetId source, std::size_t removed, std::size_t added) {
+  std::size_t& pieces = pieces_of_source_.try_emplace(source, 1).first->second;  // once whole
+  KERF_CHECK(pieces >= removed);
+  const std::size_t before = pieces;
+  pieces = before - removed + added;
+  const auto split = [](std::size_t n) { return n >= 2; };
+  statistics_.cut_tets = statistics_.cut_tets + split(pieces) - split(before);
+  statistics_.new_tets =
+      statistics_.new_tets + (split(pieces) ? pieces : 0) - (split(before) ? before : 0);
 }
 
 void CrackCutter::RemoveCrack(const FaceKey& key) {
@@ -289,7 +354,7 @@ void CrackCutter::Repart(const std::vector<VertexId>& origins) {
   }
   for (const VertexCopy& c : changes.made) {
     made_vertices_.push_back({c.copy, {c.from, c.from, c.from, c.from}, {1, 0, 0, 0}});
-    ++statistics_.parted_vertices;
+    if (parting_.Origin(c.copy) != c.copy) ++statistics_.parted_vertices;
   }
 }
 

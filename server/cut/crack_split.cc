@@ -53,6 +53,27 @@ std::optional<VertexId> EdgePoint(const TetCrack& crack, int i, int j) {
   return std::nullopt;
 }
 
+// Whether the segment is an edge of a triangle of the tet's faces that lies on the crack and
+// whose three edges are all trace segments: the cone's faces through them, with the triangle,
+// would wall in the piece over it (cut it free), where the crack only runs in the face.
+bool WallsInAPiece(const TetCrack& crack, const std::array<VertexId, 2>& segment,
+                   const std::vector<std::array<VertexId, 2>>& traces) {
+  const auto is_trace = [&](VertexId a, VertexId b) {
+    const std::array<VertexId, 2> s = Index(a) < Index(b) ? std::array{a, b} : std::array{b, a};
+    return std::find(traces.begin(), traces.end(), s) != traces.end();
+  };
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.on_crack) {
+      const bool has_segment = std::find(t.begin(), t.end(), segment[0]) != t.end() &&
+                               std::find(t.begin(), t.end(), segment[1]) != t.end();
+      if (has_segment && is_trace(t[0], t[1]) && is_trace(t[1], t[2]) && is_trace(t[2], t[0])) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 void AddWholeFaceCracks(const TetCrack& crack, CrackSplit* split) {
   for (const FaceSplit& f : crack.faces) {
     split->crack_faces.insert(split->crack_faces.end(), f.on_crack.begin(), f.on_crack.end());
@@ -233,7 +254,10 @@ CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {
     }
   }
   if (HasInnerCrack(crack)) {
-    for (const auto& s : Traces(crack)) split.crack_faces.push_back({apex, s[0], s[1]});
+    const std::vector<std::array<VertexId, 2>> traces = Traces(crack);
+    for (const auto& s : traces) {
+      if (!WallsInAPiece(crack, s, traces)) split.crack_faces.push_back({apex, s[0], s[1]});
+    }
   }
   AddWholeFaceCracks(crack, &split);
   return split;

@@ -11,6 +11,8 @@ namespace {
 using mesh::TetId;
 using mesh::VertexId;
 
+constexpr VertexId kNone{0xffffffffu};
+
 int Root(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -75,33 +77,49 @@ PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<Vert
       KERF_CHECK(false);
       return o;
     };
+    // Each part keeps the id most of its tets use (larger parts choose first), so no tet moves
+    // unless parts merge. A part left with none takes the origin if no part kept it, else a new
+    // copy, either starting where its tets had the vertex.
     const std::vector<VertexId> ids = Ids(o);
-    std::vector<VertexId> assigned(parts.size(), VertexId(0xffffffffu));
-    absl::flat_hash_set<VertexId> taken = {o};
-    assigned[0] = o;
-    for (std::size_t p = 1; p < parts.size(); ++p) {
+    std::vector<VertexId> assigned(parts.size(), kNone), had(parts.size(), kNone);
+    absl::flat_hash_set<VertexId> taken;
+    for (std::size_t p = 0; p < parts.size(); ++p) {
       absl::flat_hash_map<VertexId, int> uses;
       for (const int i : parts[p]) ++uses[id_in(i)];
-      int most = 0;
+      int most = 0, most_free = 0;
       for (const auto& [id, n] : uses) {
-        if (!taken.contains(id) && (n > most || (n == most && id < assigned[p]))) {
-          most = n;
+        if (n > most || (n == most && id < had[p])) most = n, had[p] = id;
+        if (!taken.contains(id) && (n > most_free || (n == most_free && id < assigned[p]))) {
+          most_free = n;
           assigned[p] = id;
         }
       }
-      for (const VertexId id : ids) {  // else a copy no part took, kept (and its state) if any
-        if (most == 0 && id != o && mesh->IsAlive(id) && !taken.contains(id)) {
-          assigned[p] = id;
-          most = 1;
-        }
-      }
-      if (most == 0) {
-        assigned[p] = mesh->AddVertex(mesh->rest_position(o), mesh->current_position(o));
+      if (assigned[p] != kNone) taken.insert(assigned[p]);
+    }
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      if (assigned[p] != kNone) continue;
+      if (!taken.contains(o)) {
+        assigned[p] = o;
+        KERF_CHECK(
+            mesh->MoveVertex(o, mesh->rest_position(had[p]), mesh->current_position(had[p])).ok());
+        changes.made.push_back({o, had[p]});
+      } else {
+        assigned[p] = mesh->AddVertex(mesh->rest_position(had[p]), mesh->current_position(had[p]));
         origin_[assigned[p]] = o;
         copies_[o].push_back(assigned[p]);
-        changes.made.push_back({assigned[p], o});
+        changes.made.push_back({assigned[p], had[p]});
       }
       taken.insert(assigned[p]);
+    }
+    if (!taken.contains(o)) {
+      // Every part kept a copy: the largest takes the origin (the key the crack names it by)
+      // in its copy's place, and the copy goes.
+      const VertexId copy = assigned[0];
+      KERF_CHECK(mesh->MoveVertex(o, mesh->rest_position(copy), mesh->current_position(copy)).ok());
+      changes.made.push_back({o, copy});
+      taken.erase(copy);
+      taken.insert(o);
+      assigned[0] = o;
     }
     for (std::size_t p = 0; p < parts.size(); ++p) {
       for (const int i : parts[p]) {

@@ -5,9 +5,14 @@
 // function of the crack alone: a crack face added later parts a vertex further; tets that were
 // rebuilt (a temporary split following the blade) are joined back to the parts they touch.
 //
-// Each part keeps one id: the largest keeps the origin, each other the copy most of its tets
-// already use, or a new copy at the same rest and current position. A copy no part uses any more
-// is removed. A vertex on the crack's front (the crack ends at it) has one part and stays whole.
+// Each part keeps the id most of its tets already use (larger parts choose first), so a tet
+// changes its vertex only where parts merge: a side of an opened crack never jumps to the other
+// side's place. A part left with none takes the origin if no part kept it, else a new copy,
+// either starting at the place (and, for the simulation, the state) its tets had the vertex at;
+// where every part kept a copy, the largest takes the origin in its copy's place (the origin
+// stays in use: it names the vertex).
+// A copy no part uses any more is removed. A vertex on the crack's front (the crack ends at it)
+// has one part and stays whole.
 #pragma once
 
 #include <array>
@@ -26,12 +31,12 @@ using CrackFaceSet = absl::flat_hash_set<FaceKey, FaceKeyHash>;
 
 struct VertexCopy {
   mesh::VertexId copy;
-  mesh::VertexId from;  // its origin
+  mesh::VertexId from;  // the vertex whose place (and state) it starts from
 };
 
 struct PartingChanges {
-  std::vector<VertexCopy> made;
-  std::vector<mesh::VertexId> removed;                        // copies no part uses
+  std::vector<VertexCopy> made;         // new copies, and origins taken up again by another part
+  std::vector<mesh::VertexId> removed;  // copies no part uses
   std::vector<std::pair<mesh::TetId, mesh::TetId>> replaced;  // old tet, the tet in its place
 };
 

@@ -121,8 +121,6 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   const cut::CutStatistics& stats = sim.cutter()->statistics();
   row.set_cut_tets(static_cast<std::uint32_t>(stats.cut_tets));
   row.set_tets_after(static_cast<std::uint32_t>(sim.mesh().tet_count()));
-  row.set_held_poses(static_cast<std::uint32_t>(stats.held_poses));
-  row.set_dropped_hits(static_cast<std::uint32_t>(stats.dropped_hits));
   row.set_valid(mesh::ValidateMesh(sim.mesh()).ok());
   const mesh::MeshQuality quality = mesh::MeasureMeshQuality(sim.mesh());
   row.set_smallest_radius_ratio(quality.min_radius_ratio);

@@ -9,7 +9,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
-#include "cut/cutter.h"
+#include "cut/crack_cutter.h"
 #include "fem/boundary_conditions.h"
 #include "fem/elastic_forces.h"
 #include "fem/material.h"
@@ -29,7 +29,7 @@ struct Scene {
   kerf::v1::Needs needs;  // carried for the service; the simulation itself needs no output
   kerf::v1::Cutting::Mode cut_mode = kerf::v1::Cutting::PROGRESSIVE;
   double min_temporary_height = cut::kDefaultMinTemporaryHeight;  // see kerf.v1.Cutting
-  double snap_fraction = cut::kDefaultSnapFraction;               // see kerf.v1.Cutting
+  double snap_fraction = cut::kDefaultCrackSnapFraction;          // see kerf.v1.Cutting
   fem::ElasticOptions elastic;                                    // see kerf.v1.Elasticity
   std::optional<fem::SleepOptions> sleep;  // set: vertices at rest sleep (kerf.v1.Sleeping)
 };

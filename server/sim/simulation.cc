@@ -61,13 +61,14 @@ void Simulation::Step() {
 absl::Status Simulation::ApplyBladePose(const cut::BladePose& pose) {
   if (cutter_ == nullptr) {
     // The spatial index's cells are about an edge long.
-    absl::StatusOr<cut::Cutter> cutter = cut::Cutter::Create(
+    absl::StatusOr<cut::CrackCutter> cutter = cut::CrackCutter::Create(
         &scene_.mesh, mesh::MeanEdgeLength(scene_.mesh), {},
-        scene_.cut_mode == kerf::v1::Cutting::DEFERRED ? cut::CutMode::kDeferred
-                                                       : cut::CutMode::kProgressive,
-        scene_.min_temporary_height, scene_.snap_fraction);
+        {.mode = scene_.cut_mode == kerf::v1::Cutting::DEFERRED ? cut::CutMode::kDeferred
+                                                                : cut::CutMode::kProgressive,
+         .snap_fraction = scene_.snap_fraction,
+         .min_temporary_height = scene_.min_temporary_height});
     if (!cutter.ok()) return cutter.status();
-    cutter_ = std::make_unique<cut::Cutter>(*std::move(cutter));
+    cutter_ = std::make_unique<cut::CrackCutter>(*std::move(cutter));
     // Slivers standing in for a tet while the blade is in it are softened.
     model_->SetStiffnessScale(
         [cutter = cutter_.get()](mesh::TetId t) { return cutter->StiffnessScale(t); });
@@ -108,8 +109,8 @@ absl::Status Simulation::SetDisplacement(std::vector<Eigen::Vector3d> u) {
 
 absl::Status Simulation::FollowCut() {
   const std::vector<cut::MadeVertex> made = cutter_->TakeMadeVertices();
-  // Slots of vertices the cutter made and removed again (dropped hits) count too: the model
-  // and the state cover every slot of the mesh.
+  // Slots of vertices the cutter made and removed again (temporary points) count too: the
+  // model and the state cover every slot of the mesh.
   const std::size_t n = scene_.mesh.vertex_index_bound();
   if (made.empty() && state_.displacement.size() == n && model_->InSyncWithMesh()) {
     return absl::OkStatus();

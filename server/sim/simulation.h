@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "absl/status/statusor.h"
-#include "cut/cutter.h"
+#include "cut/crack_cutter.h"
 #include "fem/implicit_integrator.h"
 #include "fem/substepped_integrator.h"
 #include "fem/tensor_mass_model.h"
@@ -26,7 +26,7 @@ class Simulation {
   // Afterwards the mesh's current positions are rest plus displacement. O(vertices + edges).
   void Step();
 
-  // Moves the blade (see cut::Cutter): the mesh is cut where the blade has passed, the
+  // Moves the blade (see cut::CrackCutter): the mesh is cut where the blade has passed, the
   // elastic model follows incrementally, and the vertices the cut made take displacement and
   // velocity interpolated from the vertices they came from. With SYMPLECTIC_EULER and an
   // automatic time step the step is re-estimated after a cut (small new tets lower the
@@ -47,7 +47,7 @@ class Simulation {
   const fem::DynamicState& state() const { return state_; }
   double time_step() const { return time_step_; }
   // The cutter, once a blade pose was applied (null before).
-  const cut::Cutter* cutter() const { return cutter_.get(); }
+  const cut::CrackCutter* cutter() const { return cutter_.get(); }
   // How the last step's linear solve went (IMPLICIT_EULER; null otherwise).
   const fem::ImplicitSolveReport* last_implicit_solve() const {
     return implicit_ != nullptr ? &implicit_->last_solve() : nullptr;
@@ -90,7 +90,7 @@ class Simulation {
   fem::DynamicState state_;
   double time_step_ = 0;
   double critical_time_step_ = 0;
-  std::unique_ptr<cut::Cutter> cutter_;
+  std::unique_ptr<cut::CrackCutter> cutter_;
 };
 
 }  // namespace kerf::sim

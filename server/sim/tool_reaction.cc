@@ -23,7 +23,7 @@ ToolReaction MeasureToolReaction(const Simulation& simulation,
                                  const cut::BladePose& pose,
                                  const std::optional<cut::BladePose>& previous) {
   ToolReaction reaction;
-  const cut::Cutter* cutter = simulation.cutter();
+  const cut::CrackCutter* cutter = simulation.cutter();
   if (cutter == nullptr) return reaction;
   const std::vector<mesh::TetVertices> holding = cutter->TetsHoldingBlade(pose);
   if (holding.empty()) return reaction;

@@ -209,9 +209,11 @@ TEST(KerfCli, CutTracesAndDumpsEveryPoseProgressively) {
           << file;
     }
   }
-  EXPECT_EQ(reports[0].max_lag_steps(), 0u);
+  // Each step's swept surface is cut as the step is made progressively; deferred, not until the
+  // blade has left the bar (10 steps inside it).
+  EXPECT_EQ(reports[0].poses_not_covered(), 0u);
   EXPECT_GT(reports[0].poses_by_case(3) + reports[0].poses_by_case(6), 0u);
-  EXPECT_GE(reports[1].max_lag_steps(), 10u);
+  EXPECT_GE(reports[1].poses_not_covered(), 10u);
   EXPECT_EQ(reports[0].tets_after(), reports[1].tets_after());
   EXPECT_THAT(Kerf(absl::StrCat("cut ", dir, "/bar.msh --path ", dir, "/sweep.json --out ", dir,
                                 "/x.vtu --progressive --deferred"))
@@ -409,8 +411,8 @@ TEST(KerfCli, LiveCutExperimentShowsExplicitBlowUpsAndImplicitStability) {
   EXPECT_TRUE(automatic_progressive.blew_up());
   EXPECT_LT(automatic_progressive.time_step(), automatic_progressive.critical_time_step());
   // Explicit in sub-steps of 1 ms: the deferred cut's 2 mm tets need 2-3 sub-steps and it
-  // stays stable; the progressive cut's temporary slivers need hundreds (no assertion on
-  // whether it blows up: snapping, not yet made, is what removes them).
+  // stays stable; the progressive cut's pieces on the blade (its crossings are not snapped, so
+  // the crack follows it) need hundreds (no assertion on whether it blows up).
   const kerf::v1::LiveCutRow& substepped_deferred = experiment.rows(4);
   EXPECT_EQ(substepped_deferred.integration(), "SYMPLECTIC_EULER_SUBSTEPPED, 1 ms");
   EXPECT_FALSE(substepped_deferred.blew_up());
@@ -422,10 +424,11 @@ TEST(KerfCli, LiveCutExperimentShowsExplicitBlowUpsAndImplicitStability) {
     const kerf::v1::LiveCutRow& r = experiment.rows(i);
     EXPECT_EQ(r.integration(), "IMPLICIT_EULER, 1 ms");
     EXPECT_FALSE(r.blew_up()) << r.cut_mode();
-    EXPECT_LT(r.largest_energy_ratio(), 1.01) << r.cut_mode();
-    EXPECT_EQ(r.cut_tets(), 96u) << r.cut_mode();  // the whole cross-section
-    EXPECT_EQ(r.tets_after(), 928u) << r.cut_mode();
-    EXPECT_EQ(r.dropped_hits(), 0u) << r.cut_mode();
+    // The pieces that follow the blade move their points each pose: the energy rises by 1.9%
+    // progressively (2026-11-26), by nothing deferred.
+    EXPECT_LT(r.largest_energy_ratio(), 1.05) << r.cut_mode();
+    EXPECT_EQ(r.cut_tets(), 96u) << r.cut_mode();                      // the whole cross-section
+    EXPECT_LE(r.tets_after(), 576u - 96u + 5.2 * 96) << r.cut_mode();  // the paper's 5.2
     EXPECT_TRUE(r.valid()) << r.cut_mode();
     EXPECT_GT(r.solve_iterations_max(), 0u) << r.cut_mode();
     EXPECT_LE(r.solve_iterations_median(), r.solve_iterations_max()) << r.cut_mode();
@@ -445,69 +448,51 @@ kerf::v1::CutReport CutLattice(absl::string_view path, absl::string_view extra,
   return report;
 }
 
-// The report counts held poses and softened pieces. On the curved path the blade passes
-// through lattice edges and lies in lattice faces' planes (the crack's front runs through those
-// edges: no pose held, no lag); its cut edges are hit about 1% from their corners, which makes
-// temporary slivers: softened under the default 2% guard, more under 10%, none with the guard
-// off, and the cut the same in all three. The straight path holds none.
-TEST(KerfCli, CutReportsHeldPosesAndSoftenedPieces) {
-  const auto cut = [](absl::string_view path, absl::string_view extra) {
-    return CutLattice(path, absl::StrCat(" --progressive", extra));
+// The height guard softens pieces on the blade for the elastic model only: the curved path is
+// cut alike under the default 2%, 10% and with the guard off; a guard of a whole tet is refused.
+TEST(KerfCli, CutTakesAHeightGuardThatChangesNoCut) {
+  const auto cut = [](absl::string_view extra) {
+    return CutLattice("lattice-curved", absl::StrCat(" --progressive", extra));
   };
-  const kerf::v1::CutReport curved = cut("lattice-curved", "");
-  EXPECT_EQ(curved.held_poses(), 0u);
-  EXPECT_EQ(curved.max_lag_steps(), 0u);
-  EXPECT_EQ(curved.uncovered_temporary_plans(), 0u);
-  EXPECT_EQ(curved.nonconforming_plans(), 0u);
-  EXPECT_GT(curved.thin_temporary_plans(), 0u);
-  const kerf::v1::CutReport guarded = cut("lattice-curved", " --min-temporary-height 0.1");
-  EXPECT_GT(guarded.thin_temporary_plans(), curved.thin_temporary_plans());
-  const kerf::v1::CutReport unguarded = cut("lattice-curved", " --min-temporary-height 0");
-  EXPECT_EQ(unguarded.thin_temporary_plans(), 0u);
-  for (const kerf::v1::CutReport* other : {&guarded, &unguarded}) {
-    EXPECT_EQ(other->held_poses(), 0u);
-    EXPECT_EQ(other->dropped_hits(), 0u);
-    EXPECT_EQ(other->cut_tets(), curved.cut_tets());
-    EXPECT_EQ(other->tets_after(), curved.tets_after());
+  const kerf::v1::CutReport curved = cut("");
+  EXPECT_GT(curved.cut_tets(), 0u);
+  for (const absl::string_view guard :
+       {" --min-temporary-height 0.1", " --min-temporary-height 0"}) {
+    const kerf::v1::CutReport other = cut(guard);
+    EXPECT_EQ(other.cut_tets(), curved.cut_tets()) << guard;
+    EXPECT_EQ(other.tets_after(), curved.tets_after()) << guard;
   }
-  const kerf::v1::CutReport straight = cut("lattice-straight", "");
-  EXPECT_EQ(straight.held_poses(), 0u);
-  EXPECT_EQ(straight.nonconforming_plans(), 0u);
-  EXPECT_EQ(straight.uncovered_temporary_plans(), 0u);
-  EXPECT_EQ(
+  const CliResult refused =
       Kerf(absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR,
                         "/server/cut/paths/lattice-straight.json --out ", ::testing::TempDir(),
-                        "/held.vtu --progressive", " --min-temporary-height 1"))
-          .exit_code,
-      1);
+                        "/held.vtu --min-temporary-height 1"));
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_THAT(refused.output,
+              HasSubstr("the least temporary height must be a fraction in [0, 1), got 1"));
 }
 
 // Snapping: along the straight path the blade passes within 0.2 of an edge of a plane of
-// vertices; deferred with --snap 0.2 it cuts through them, and every cut tet goes over whole
-// (no sliver, the lattice's own 45 degrees); progressive cutting ends with the same mesh.
-TEST(KerfCli, CutSnapsThroughVerticesWhenAsked) {
+// vertices; by default (0.2) it cuts through them, and every tet goes over whole (no tet is
+// cut, no sliver), where the least snapping (--snap 0) leaves slivers; progressive cutting ends
+// with the same mesh.
+TEST(KerfCli, CutSnapsThroughVertices) {
   const auto cut = [](absl::string_view extra) { return CutLattice("lattice-straight", extra); };
-  const kerf::v1::CutReport plain = cut(" --deferred");
-  const kerf::v1::CutReport snapped = cut(" --deferred --snap 0.2");
+  const kerf::v1::CutReport plain = cut(" --deferred --snap 0");
+  const kerf::v1::CutReport snapped = cut(" --deferred");
   EXPECT_EQ(plain.snapped_vertices(), 0u);
   EXPECT_GT(plain.slivers(), 0u);
   EXPECT_GT(snapped.snapped_vertices(), 0u);
   EXPECT_EQ(snapped.snap_fraction(), 0.2);
   EXPECT_EQ(snapped.slivers(), 0u);
-  EXPECT_EQ(snapped.new_tets(), snapped.cut_tets());
   EXPECT_EQ(snapped.tets_after(), snapped.tets_before());
-  EXPECT_NEAR(snapped.min_dihedral_deg(), 45, 1e-9);
+  EXPECT_EQ(snapped.cut_tets(), 0u);  // the crack runs along the lattice's faces
   EXPECT_EQ(snapped.components(), plain.components());
   EXPECT_TRUE(snapped.valid());
-  // Progressive cutting snaps alike: the same mesh at the end, each vertex parted once its
-  // tets are final.
-  const kerf::v1::CutReport progressive = cut(" --snap 0.2");
+  const kerf::v1::CutReport progressive = cut("");
   EXPECT_EQ(progressive.snapped_vertices(), snapped.snapped_vertices());
-  EXPECT_EQ(progressive.parted_vertices(), snapped.parted_vertices());
   EXPECT_EQ(progressive.tets_after(), snapped.tets_after());
   EXPECT_EQ(progressive.slivers(), 0u);
   EXPECT_EQ(progressive.components(), plain.components());
-  EXPECT_EQ(progressive.held_poses(), 0u);
   EXPECT_TRUE(progressive.valid());
   // Valid after every pose, too: a face the crack runs along is alike from both sides once
   // copies are taken as the vertices they were parted from.
@@ -522,25 +507,22 @@ TEST(KerfCli, CutSnapsThroughVerticesWhenAsked) {
 }
 
 // Snapping where the crack's front is inside the tissue: along the curved path the tip runs
-// 1.3 mm under a plane of edges and beside vertices. Deferred with --snap 0.2, crossings near an
-// edge are taken on it, those beside a snapped vertex pass through it, and the tets beside it
-// that no case covers are split as cones: no sliver is left (the plain cut leaves over 50),
-// nothing is dropped, and the mesh is valid after every pose.
-TEST(KerfCli, CutSnapsTheCracksFrontWhenAsked) {
+// 1.3 mm under a plane of edges and beside vertices. By default the crossings near vertices are
+// taken at them: a handful of slivers and none under 4.5 degrees, where the least snapping
+// leaves over 100 down to 0.3 degrees; the crack is one piece with the bar (2 cm deep, not
+// through) and the mesh valid after every pose, in both modes.
+TEST(KerfCli, CutSnapsTheCracksFront) {
   for (const std::string mode : {"", " --deferred"}) {  // progressive (the default), deferred
     SCOPED_TRACE(mode);
-    const kerf::v1::CutReport plain = CutLattice("lattice-curved", mode);
-    const kerf::v1::CutReport snapped = CutLattice("lattice-curved", mode + " --snap 0.2");
-    EXPECT_GT(plain.slivers(), 50u);
-    EXPECT_EQ(plain.edge_snapped_hits(), 0u);
-    EXPECT_GT(snapped.edge_snapped_hits(), 0u);
-    EXPECT_GT(snapped.split_edge_tets(), 0u);
-    EXPECT_EQ(snapped.slivers(), 0u);
-    EXPECT_GT(snapped.min_dihedral_deg(), 5);
+    const kerf::v1::CutReport plain = CutLattice("lattice-curved", mode + " --snap 0");
+    const kerf::v1::CutReport snapped = CutLattice("lattice-curved", mode);
+    EXPECT_GT(plain.slivers(), 100u);
+    EXPECT_GT(snapped.snapped_vertices(), plain.snapped_vertices());
+    EXPECT_LT(snapped.slivers(), 5u);
+    EXPECT_GT(snapped.min_dihedral_deg(), 4.5);
     EXPECT_LT(snapped.cut_tets(), plain.cut_tets());
     for (const kerf::v1::CutReport* r : {&plain, &snapped}) {
-      EXPECT_EQ(r->dropped_hits(), 0u);
-      EXPECT_EQ(r->held_poses(), 0u);
+      EXPECT_EQ(r->components(), 1u);
       EXPECT_EQ(r->invalid_poses(), 0u);
       EXPECT_TRUE(r->valid());
     }
@@ -548,16 +530,12 @@ TEST(KerfCli, CutSnapsTheCracksFrontWhenAsked) {
 }
 
 // On the deliberately poor lattice (kerf cut takes it by name) the curved path's tip passes
-// through points where the blade cut an edge at an earlier pose or the same one (a fraction of
-// 0.15 from a vertex that could not snap): snapped, those face crossings close the edge's cut
-// rather than making face points 0.02 mm from it (smallest new dihedral 0.005 deg without).
-TEST(KerfCli, CutOfThePoorLatticeClosesCutsTheTipPassesThrough) {
-  const kerf::v1::CutReport poor =
-      CutLattice("lattice-curved", " --deferred --snap 0.2", "lattice-poor");
+// beside vertices that are near edges the blade cut: the cut is valid after every pose and
+// leaves no new tet under half a degree.
+TEST(KerfCli, CutOfThePoorLatticeStaysValid) {
+  const kerf::v1::CutReport poor = CutLattice("lattice-curved", " --deferred", "lattice-poor");
   EXPECT_TRUE(poor.valid());
   EXPECT_EQ(poor.invalid_poses(), 0u);
-  EXPECT_EQ(poor.dropped_hits(), 0u);
-  EXPECT_GT(poor.edge_snapped_hits(), 0u);
   EXPECT_GT(poor.min_dihedral_deg(), 0.5);
 }
 
@@ -578,7 +556,7 @@ TEST(KerfCli, LatticeCutExperimentMeetsThePapersFigure) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   kerf::v1::CutExperiment experiment;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &experiment).ok());
-  ASSERT_EQ(experiment.cuts_size(), 4);  // each path as by default, then snapped
+  ASSERT_EQ(experiment.cuts_size(), 4);  // each path progressive (the default), then deferred
   const kerf::v1::CutReport& straight = experiment.cuts(0);
   EXPECT_EQ(straight.path(), "lattice-straight");
   EXPECT_EQ(straight.tets_before(), 576u);
@@ -589,20 +567,18 @@ TEST(KerfCli, LatticeCutExperimentMeetsThePapersFigure) {
   const kerf::v1::CutReport& curved = experiment.cuts(2);
   EXPECT_EQ(curved.path(), "lattice-curved");
   EXPECT_EQ(curved.components(), 1u);  // a crack 2 cm deep
-  EXPECT_GT(curved.case_iii() + curved.case_iv() + curved.case_v(), 0u);
   EXPECT_TRUE(curved.valid());
   for (const int k : {1, 3}) {
-    const kerf::v1::CutReport& snapped = experiment.cuts(k);
-    const kerf::v1::CutReport& unsnapped = experiment.cuts(k - 1);
-    SCOPED_TRACE(snapped.path());
-    EXPECT_EQ(snapped.path(), unsnapped.path());
-    EXPECT_EQ(snapped.mode(), "deferred");
-    EXPECT_EQ(snapped.snap_fraction(), 0.2);
-    EXPECT_TRUE(snapped.valid());
-    EXPECT_EQ(snapped.components(), unsnapped.components());
-    EXPECT_EQ(snapped.dropped_hits(), 0u);
-    EXPECT_LE(snapped.slivers(), unsnapped.slivers());
-    EXPECT_LE(snapped.new_tets(), unsnapped.new_tets());
+    const kerf::v1::CutReport& deferred = experiment.cuts(k);
+    const kerf::v1::CutReport& progressive = experiment.cuts(k - 1);
+    SCOPED_TRACE(deferred.path());
+    EXPECT_EQ(deferred.path(), progressive.path());
+    EXPECT_EQ(deferred.mode(), "deferred");
+    EXPECT_EQ(deferred.snap_fraction(), 0.2);
+    EXPECT_TRUE(deferred.valid());
+    EXPECT_EQ(deferred.invalid_poses(), 0u);
+    EXPECT_EQ(deferred.components(), progressive.components());
+    EXPECT_EQ(deferred.tets_after(), progressive.tets_after());  // the same cut in the end
   }
   EXPECT_EQ(Kerf("experiment nothing").exit_code, 1);
 }

@@ -72,8 +72,8 @@ TEST(CrackCutter, TwoTetsCutThroughStayConformingAndPart) {
   }
   for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
     TetMesh m = pair;
-    CrackCutter cutter =
-        *CrackCutter::Create(&m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100}, mode);
+    CrackCutter cutter = *CrackCutter::Create(
+        &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100}, {.mode = mode});
     for (int i = 0; i <= 6; ++i) {
       const double z = -0.5 + 0.35 * i;  // the plane x = 0.4, swept upwards
       ASSERT_TRUE(cutter.ApplyPose({0.1 * i, {0.4, -1, z}, {0.4, 2, z}}).ok());
@@ -96,7 +96,7 @@ TEST(CrackCutter, TrembleAcrossEdgesCutsThemOnce) {
   std::size_t tets[2] = {0, 0};
   for (const bool tremble : {false, true}) {
     TetMesh m = lattice;
-    CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m), CutMode::kDeferred);
+    CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m), {.mode = CutMode::kDeferred});
     // A blade through the whole depth at x = 0.55 goes across y, trembling 0.1 in x or not.
     for (int i = 0; i <= 60; ++i) {
       const double x = tremble ? 0.5 + 0.1 * (i % 2) : 0.55, y = -0.5 + 0.05 * i;
@@ -112,7 +112,7 @@ TEST(CrackCutter, TrembleAcrossEdgesCutsThemOnce) {
 
 TEST(CrackCutter, TheCrackWaitsWhileTheBladeIsInItsTets) {
   TetMesh m = *mesh::MakeBoxLattice({.cells_x = 4, .cells_y = 2, .cells_z = 2});
-  CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m), CutMode::kDeferred);
+  CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m), {.mode = CutMode::kDeferred});
   // A blade standing through the bar at x = 2.3 goes half way across it.
   for (int i = 0; i <= 10; ++i) {
     const double y = -0.5 + 0.15 * i;
@@ -157,7 +157,7 @@ TEST(CrackCutter, TheCrackFollowsTheBladeProgressively) {
 
 TEST(CrackCutter, BadPosesAndFractionsAreRefused) {
   TetMesh m = *mesh::MakeBoxLattice({});
-  EXPECT_EQ(CrackCutter::Create(&m, 1, {}, CutMode::kProgressive, 0.5).status().message(),
+  EXPECT_EQ(CrackCutter::Create(&m, 1, {}, {.snap_fraction = 0.5}).status().message(),
             "the snap fraction must be in [0, 0.5), got 0.5");
   CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m));
   ASSERT_TRUE(cutter.ApplyPose({1, {0.5, 0.5, -1}, {0.5, 0.5, 2}}).ok());
@@ -177,7 +177,8 @@ PathResult CutChecked(const TetMesh& tissue, CutMode mode, lab::PathFamily famil
                       std::uint64_t seed) {
   TetMesh m = tissue;
   const std::vector<BladePose> poses = lab::MakeHandPath(tissue, family, seed);
-  CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m), LimitsFor(m), mode);
+  CrackCutter cutter =
+      *CrackCutter::Create(&m, mesh::MeanEdgeLength(m), LimitsFor(m), {.mode = mode});
   lab::FidelityMeter meter(tissue);
   const double volume = RestVolume(tissue);
   const auto check = [&](std::size_t i) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <random>
+#include <set>
 
 #include "geometry/tet_measures.h"
 
@@ -222,6 +223,29 @@ TEST(CrackSplit, NoPointsLeavesTheTetWholeAndAFaceOnTheCrackIsACrackFace) {
   ASSERT_TRUE(split);
   EXPECT_EQ(split->kind, CrackSplitKind::kWhole);
   EXPECT_EQ(split->crack_faces.size(), 1u);
+}
+
+// Three corners on the crack (their face lies on it) and the two edges from two of them to the
+// fourth cut: the cone spans the crack from the traces that leave the face, not from the edges of
+// the face's triangles on the crack, so no piece is walled in by crack faces (cut free).
+TEST(CrackSplit, AConeWallsInNoPieceOverAFaceOnTheCrack) {
+  OneTet tet;
+  for (const int i : {1, 2, 3}) tet.CornerOnCrack(i);
+  tet.CutEdge(0, 1, 0.3);
+  tet.CutEdge(0, 2, 0.3);
+  const TetCrack crack = tet.Crack();
+  ASSERT_FALSE(SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); }));
+  const CrackSplit split = SplitAsCone(crack, tet.Apex({0.25, 0.25, 0.25, 0.25}));
+  ExpectTiles(tet, crack, split);
+  std::set<Triangle> cracked;
+  for (const Triangle& c : split.crack_faces) cracked.insert(Sorted(c));
+  for (const mesh::TetVertices& t : split.tets) {
+    int on_crack = 0;
+    for (const auto& f : mesh::kTetFaces)
+      on_crack += cracked.contains(Sorted({t[f[0]], t[f[1]], t[f[2]]}));
+    EXPECT_LT(on_crack, 4);
+    EXPECT_LT(on_crack, 3) << "a piece held by one face only";
+  }
 }
 
 }  // namespace

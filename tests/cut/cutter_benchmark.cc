@@ -1,16 +1,14 @@
 // The cost of cutting: a pose with the blade inside a cut, on lattices of about 10k and 1M
-// tets (the goal: at most 1.5 times as much on the larger one), and the final subdivision per
-// cut tet.
+// tets (the goal: at most 1.5 times as much on the larger one), a progressive pose by the
+// number of tets the blade is in, and the final split per cut tet.
 #include <benchmark/benchmark.h>
 
 #include <array>
-#include <functional>
 #include <memory>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "cut/crack_cutter.h"
-#include "cut/cutter.h"
 #include "mesh/box_lattice.h"
 
 namespace kerf::cut {
@@ -38,12 +36,10 @@ void EvictCaches() {
 // through the middle of the lattice. Every 40 poses the mesh is made afresh (not timed). With
 // `evict` the caches are then evicted, so that each cut starts cold on both sizes (as after a
 // physics step over a mesh larger than the cache); without, the small mesh is still in the
-// cache from being built and the large one is not. `make` makes the cutter.
-template <typename C>
-void PoseInsideACut(benchmark::State& state, bool evict,
-                    const std::function<C(mesh::TetMesh*, const BladeLimits&)>& make) {
+// cache from being built and the large one is not.
+void PoseInsideACut(benchmark::State& state, CutMode mode, bool evict) {
   std::unique_ptr<mesh::TetMesh> m;
-  std::unique_ptr<C> cutter;
+  std::unique_ptr<CrackCutter> cutter;
   double size = 0;
   int pose = 0;
   BladeLimits limits;
@@ -53,7 +49,8 @@ void PoseInsideACut(benchmark::State& state, bool evict,
     Eigen::Vector3d high = Eigen::Vector3d::Zero();
     for (const mesh::VertexId v : m->vertices()) high = high.cwiseMax(m->rest_position(v));
     size = high.x();
-    cutter = std::make_unique<C>(make(m.get(), limits));
+    cutter =
+        std::make_unique<CrackCutter>(*CrackCutter::Create(m.get(), 0.01, limits, {.mode = mode}));
     pose = 0;
     if (evict) EvictCaches();
   };
@@ -79,30 +76,19 @@ void PoseInsideACut(benchmark::State& state, bool evict,
   state.counters["tets"] = static_cast<double>(m->tet_count());
 }
 
-// The cases cutter, deferred; the second argument 1 evicts the caches.
+// Deferred (second argument 0) or progressive (1); the third argument 1 evicts the caches.
 void BM_PoseInsideACut(benchmark::State& state) {
-  PoseInsideACut<Cutter>(state, state.range(1) == 1,
-                         [](mesh::TetMesh* m, const BladeLimits& limits) {
-                           return *Cutter::Create(m, 0.01, limits, CutMode::kDeferred);
-                         });
+  PoseInsideACut(state, state.range(1) == 1 ? CutMode::kProgressive : CutMode::kDeferred,
+                 state.range(2) == 1);
 }
 
-// The crack cutter, deferred (second argument 0) or progressive (1), warm: the two cutters
-// compared in one run.
-void BM_CrackPoseInsideACut(benchmark::State& state) {
-  const CutMode mode = state.range(1) == 1 ? CutMode::kProgressive : CutMode::kDeferred;
-  PoseInsideACut<CrackCutter>(state, false, [mode](mesh::TetMesh* m, const BladeLimits& limits) {
-    return *CrackCutter::Create(m, 0.01, limits, mode);
-  });
-}
-
-// Time per cut tet of the final subdivision of a whole cross-section: a blade through the full
+// Time per cut tet of the final split of a whole cross-section: a blade through the full
 // depth sweeps the lattice, every tet it cut waiting for it, until the timed pose takes it out
 // of the far side and they are all split at once.
 void BM_FinalSubdivision(benchmark::State& state) {
   std::size_t cut = 0;
   std::unique_ptr<mesh::TetMesh> m;
-  std::unique_ptr<Cutter> cutter;
+  std::unique_ptr<CrackCutter> cutter;
   for (auto _ : state) {
     state.PauseTiming();
     cutter.reset();  // made and freed outside the timed part
@@ -113,7 +99,8 @@ void BM_FinalSubdivision(benchmark::State& state) {
     limits.max_length = 3 * size;
     limits.max_step = 3 * size;
     limits.max_speed = 1e9;
-    cutter = std::make_unique<Cutter>(*Cutter::Create(m.get(), 0.01, limits, CutMode::kDeferred));
+    cutter = std::make_unique<CrackCutter>(
+        *CrackCutter::Create(m.get(), 0.01, limits, {.mode = CutMode::kDeferred}));
     const double x = 0.5 * size + 0.0037;
     const auto blade_at = [&](int k, double y) {
       const Eigen::Vector3d tip(x, y, -0.005);
@@ -142,8 +129,8 @@ void BM_FinalSubdivision(benchmark::State& state) {
 // Progressive cutting: one pose with the blade inside k tets (the argument, 1..20). A blade
 // reaching down into a 2 x 2 x 8 stack of 1 cm cubes, deep enough to be in k tets (three per
 // cube layer along its path; the depths were found by trying), trembles by 0.1 mm after cutting
-// into it, so every pose moves or rebuilds the temporary subdivisions of the k tets (the
-// counter k, measured). The mesh is the same for every k, so the cost grows with k only.
+// into it, so every pose moves or rebuilds the temporary splits of the k tets (the counter k,
+// measured). The mesh is the same for every k, so the cost grows with k only.
 void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
   const int wanted = static_cast<int>(state.range(0));
   mesh::TetMesh m =
@@ -151,7 +138,7 @@ void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
   BladeLimits limits;
   limits.max_length = 1;
   limits.max_speed = 1e9;
-  Cutter cutter = *Cutter::Create(&m, 0.01, limits, CutMode::kProgressive);
+  CrackCutter cutter = *CrackCutter::Create(&m, 0.01, limits);
   // Three tets a layer: the first, second and third are reached 2, 4.5 and 7.5 mm into it.
   const double depth =
       0.01 * ((wanted - 1) / 3) + 0.001 * std::array{2.0, 4.5, 7.5}[(wanted - 1) % 3];
@@ -165,7 +152,8 @@ void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
   for (auto _ : state) {
     (void)cutter.ApplyPose(blade_at(k, 0.0047 + 0.0001 * (k % 2)));
     ++k;
-    inside = cutter.last_pose().open_tets;
+    inside = 0;
+    for (const std::size_t n : cutter.last_pose().tets_by_case) inside += n;
   }
   if (static_cast<int>(inside) != wanted) {
     state.SkipWithError(absl::StrCat("the blade is in ", inside, " tets, not ", wanted).c_str());
@@ -175,12 +163,8 @@ void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
 }
 
 BENCHMARK(BM_PoseInsideACut)
-    ->ArgsProduct({{10000, 1000000}, {0, 1}})
-    ->ArgNames({"tets", "cold"})
-    ->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_CrackPoseInsideACut)
-    ->ArgsProduct({{10000, 1000000}, {0, 1}})
-    ->ArgNames({"tets", "progressive"})
+    ->ArgsProduct({{10000, 1000000}, {0, 1}, {0, 1}})
+    ->ArgNames({"tets", "progressive", "cold"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ProgressivePoseInsideKTets)->DenseRange(1, 20)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FinalSubdivision)

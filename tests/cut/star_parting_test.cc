@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "mesh/box_lattice.h"
 #include "mesh/connected_components.h"
 #include "mesh/mesh_validation.h"
@@ -90,6 +92,66 @@ TEST(StarParting, ACrackThroughTheBodyPartsItInTwo) {
   EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
   EXPECT_EQ(m.vertex_count(), 8u);
   EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
+}
+
+// An opened crack (the two halves moved apart) that parts one half further, so that the other
+// half's part becomes the largest at the diagonal's ends: no tet's vertex moves (a part keeps the
+// id its tets use), and the origin stays in use.
+TEST(StarParting, APartKeepsItsVertexWhenAnotherOutgrowsIt) {
+  TetMesh m = Cube();
+  CrackFaceSet crack;
+  std::vector<FaceKey> others;
+  for (const FaceKey& f : DiagonalFaces(m)) {
+    bool in_plane = true;
+    for (const VertexId v : f) in_plane &= m.rest_position(v).x() == m.rest_position(v).y();
+    if (in_plane) {
+      crack.insert(f);
+    } else {
+      others.push_back(f);
+    }
+  }
+  VertexParting parting;
+  PartBy(&parting, &m, crack);
+  // Open the crack: the half x > y moves by +0.1 in x, the other by -0.1.
+  for (const mesh::TetId t : m.tets()) {
+    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+    for (const VertexId v : m.tet(t)) middle += 0.25 * m.rest_position(v);
+    for (const VertexId v : m.tet(t)) {
+      const Eigen::Vector3d x =
+          m.rest_position(v) + Eigen::Vector3d(middle.x() > middle.y() ? 0.1 : -0.1, 0, 0);
+      ASSERT_TRUE(m.MoveVertex(v, m.rest_position(v), x).ok());
+    }
+  }
+  const auto shape = [&](mesh::TetId t) {
+    std::vector<std::pair<std::array<double, 3>, std::array<double, 3>>> corners;
+    for (const VertexId v : m.tet(t)) {
+      const Eigen::Vector3d& r = m.rest_position(v);
+      const Eigen::Vector3d& x = m.current_position(v);
+      corners.push_back({{r.x(), r.y(), r.z()}, {x.x(), x.y(), x.z()}});
+    }
+    std::sort(corners.begin(), corners.end());
+    return corners;
+  };
+  std::vector<decltype(shape(mesh::TetId(0)))> before;
+  for (const mesh::TetId t : m.tets()) before.push_back(shape(t));
+  // A ring face inside the half that holds the diagonal end's origin.
+  const VertexId end = VertexId(0);
+  ASSERT_EQ(m.rest_position(end), Eigen::Vector3d(0, 0, 0));
+  std::optional<FaceKey> split;
+  for (const FaceKey& f : others) {
+    const auto around = m.TetsAroundFace(f[0], f[1], f[2]);
+    if (around.size() == 2 && mesh::TetHasVertex(m.tet(around[0]), end)) split = f;
+  }
+  ASSERT_TRUE(split.has_value());
+  crack.insert(*split);
+  PartBy(&parting, &m, crack);
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_FALSE(m.TetsAround(end).empty());
+  std::vector<decltype(shape(mesh::TetId(0)))> after;
+  for (const mesh::TetId t : m.tets()) after.push_back(shape(t));
+  std::sort(before.begin(), before.end());
+  std::sort(after.begin(), after.end());
+  EXPECT_EQ(after, before);
 }
 
 }  // namespace

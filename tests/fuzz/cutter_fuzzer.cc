@@ -1,12 +1,12 @@
 // Fuzz target for the cutter: the input steers a blade through a small bar (each 7 bytes:
-// tip and heel moves, and a byte that may hesitate or withdraw the blade); an odd length snaps
-// (0.2 of an edge). Whatever the blade does, after every pose the mesh is valid and conforming
-// and keeps its volume.
+// tip and heel moves, and a byte that may hesitate or withdraw the blade); an odd length cuts
+// progressively, an even one deferred. Whatever the blade does, after every pose the mesh is
+// valid and conforming and keeps its volume.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 
-#include "cut/cutter.h"
+#include "cut/crack_cutter.h"
 #include "mesh/box_lattice.h"
 #include "mesh/mesh_validation.h"
 
@@ -35,9 +35,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   const double volume = Volume(m);
   kerf::cut::BladeLimits limits;
   limits.max_speed = 1e9;
-  kerf::cut::Cutter cutter =
-      *kerf::cut::Cutter::Create(&m, 0.01, limits, kerf::cut::CutMode::kDeferred,
-                                 kerf::cut::kDefaultMinTemporaryHeight, size % 2 == 1 ? 0.2 : 0);
+  kerf::cut::CrackCutter cutter = *kerf::cut::CrackCutter::Create(
+      &m, 0.01, limits,
+      {.mode = size % 2 == 1 ? kerf::cut::CutMode::kProgressive : kerf::cut::CutMode::kDeferred});
   Eigen::Vector3d tip(0.015, -0.003, 0.005), heel(0.015, -0.003, 0.03);
   double time = 0;
   for (std::size_t i = 0; i + 7 <= size; i += 7) {

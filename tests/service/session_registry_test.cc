@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "absl/strings/str_cat.h"
-#include "cut/cutter.h"
+#include "cut/crack_cutter.h"
 #include "service/journal_file.h"
 #include "sim/scene.h"
 
@@ -94,7 +94,7 @@ TEST_F(SessionRegistryJournalTest, AJournalRecordsTheModeAndMethodTheDefaultsCho
   ASSERT_TRUE(scene.cutting().has_min_temporary_height());
   EXPECT_EQ(scene.cutting().min_temporary_height(), cut::kDefaultMinTemporaryHeight);
   ASSERT_TRUE(scene.cutting().has_snap_fraction());
-  EXPECT_EQ(scene.cutting().snap_fraction(), 0);
+  EXPECT_EQ(scene.cutting().snap_fraction(), cut::kDefaultCrackSnapFraction);
   EXPECT_EQ(scene.integration().method(), kerf::v1::Integration::IMPLICIT_EULER);
 }
 

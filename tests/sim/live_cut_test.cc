@@ -1,6 +1,5 @@
-// A live progressive cut with a low height guard (few slivers softened): poses are held while
-// the blade skims lattice faces, and a held pose drops nothing (the final subdivisions that
-// failed with it are tried again), so the whole cut opens.
+// Cuts made live (the tissue moving under its load while the blade cuts it): no standard scene
+// blows up, and a low height guard (few pieces softened) still cuts the whole cross-section.
 #include "sim/live_cut.h"
 
 #include <gtest/gtest.h>
@@ -61,31 +60,7 @@ TEST(LiveCut, WithALowHeightGuardEveryTetTheBladeCrossesIsCut) {
   ASSERT_TRUE(row.ok()) << row.status();
   EXPECT_FALSE(row->blew_up());
   EXPECT_TRUE(row->valid());
-  EXPECT_EQ(row->dropped_hits(), 0u);
   EXPECT_EQ(row->cut_tets(), 96u);  // as deferred cutting and the default guard cut
-}
-
-// Snapping while cutting progressively along the curved path through the tensed lattice, live:
-// the blade skims lattice edges beside vertices the crack runs through. Every hit is kept (before
-// the chord's cone, pinned cuts left out where they stand in the way, and holding rather than
-// unsnapping when a temporary subdivision fails, this cut 10 tets and dropped 33 hits).
-TEST(LiveCut, ProgressiveSnappingAlongACurvedPathKeepsEveryHit) {
-  const absl::StatusOr<std::vector<cut::BladePose>> path = StandardPath("lattice-curved");
-  ASSERT_TRUE(path.ok()) << path.status();
-  absl::StatusOr<Scene> scene = LoadScene("lattice-tension");
-  ASSERT_TRUE(scene.ok()) << scene.status();
-  ASSERT_EQ(scene->cut_mode, kerf::v1::Cutting::PROGRESSIVE);
-  scene->snap_fraction = 0.2;
-  const absl::StatusOr<kerf::v1::LiveCutRow> row =
-      RunLiveCut(*std::move(scene), *path, {.settle_seconds = 0.2, .slow_down = 4});
-  ASSERT_TRUE(row.ok()) << row.status();
-  std::printf("snapped, live along the curved path: %u tets cut, %u poses held of %u\n",
-              row->cut_tets(), row->held_poses(), row->poses());
-  EXPECT_FALSE(row->blew_up());
-  EXPECT_TRUE(row->valid());
-  EXPECT_EQ(row->dropped_hits(), 0u);
-  EXPECT_GE(row->cut_tets(), 30u);  // unsnapped: 64
-  EXPECT_LT(row->held_poses() * 20, row->poses());
 }
 
 }  // namespace
