@@ -58,9 +58,9 @@ class TensorMassModel {
   // Whether the mesh has changed since the last sync (or creation).
   bool InSyncWithMesh() const { return synced_ == mesh_->change_log().Mark(); }
   // A tet carries its stiffness times `scale(t)` (in [0, 1], taken when it is added) and all
-  // its mass: a progressive cut's temporary slivers are softened (cut::CrackCutter::StiffnessScale).
-  // For tets added (or reshaped) from the next sync on; null: every scale is 1. A tet is taken
-  // away as it was added.
+  // its mass: a progressive cut's thin pieces on the blade are softened
+  // (cut::CrackCutter::StiffnessScale). For tets added (or reshaped) from the next sync on;
+  // null: every scale is 1. A tet is taken away as it was added.
   void SetStiffnessScale(std::function<double(mesh::TetId)> scale) {
     stiffness_scale_ = std::move(scale);
   }
