@@ -7,10 +7,10 @@
 //
 // The crack inside the tet is spanned by the traces of its faces: where they do not all lie on
 // one face, the crack's faces are the cone's faces from the apex through each trace segment (or
-// the minimal case's crack), but for the edges of a triangle of a face that lies on the crack
-// when all three are trace segments (the crack runs in that face there: cone faces through them
-// would wall in the piece over the triangle, cutting it free). A triangle of a face on the crack
-// is a crack face too. Which
+// the minimal case's crack). A triangle of a face on the crack is a crack face too. No piece is
+// walled in: inner crack faces that would cut pieces free of the rest of the tet (every face of
+// theirs on the tet's faces on the crack) are left out, the crack running in the tet's faces
+// there. Which
 // vertices the crack parts is not decided here (cut/star_parting.h).
 #pragma once
 

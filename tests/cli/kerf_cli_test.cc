@@ -83,6 +83,24 @@ TEST(KerfCli, InfoOnSharedLiver) {
             81u);  // 13.6% of 596 under 20 degrees
 }
 
+// The shipped path across the liver cuts it in two, in both modes, and frees no other piece: a
+// vertex it snaps to beside edges it cuts near makes no chip.
+TEST(KerfCli, CutAcrossTheSharedLiverPartsItInTwo) {
+  const std::string path = kerf::testing::SharedMeshPath("liver.msh");
+  if (path.empty()) GTEST_SKIP() << "shared/meshes is not beside the repo";
+  for (const absl::string_view mode : {"", " --deferred"}) {
+    const CliResult run = Kerf(absl::StrCat("cut ", path, " --path ", KERF_SOURCE_DIR,
+                                            "/server/cut/paths/liver-across.json --out ",
+                                            ::testing::TempDir(), "/liver-cut.vtu --json", mode));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    kerf::v1::CutReport report;
+    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok());
+    EXPECT_EQ(report.components(), 2u) << mode;
+    EXPECT_TRUE(report.valid()) << mode;
+    EXPECT_EQ(report.coverage(), 1) << mode;
+  }
+}
+
 TEST(KerfCli, SimRunWritesFramesAParaViewCollectionAndASummary) {
   const std::string dir = ::testing::TempDir() + "/frames";
   const CliResult run = Kerf(absl::StrCat("sim run bar-cantilever --steps 250 --vtu-out ", dir));
@@ -535,6 +553,7 @@ TEST(KerfCli, CutSnapsTheCracksFront) {
 TEST(KerfCli, CutOfThePoorLatticeStaysValid) {
   const kerf::v1::CutReport poor = CutLattice("lattice-curved", " --deferred", "lattice-poor");
   EXPECT_TRUE(poor.valid());
+  EXPECT_EQ(poor.components(), 1u);  // nothing cut free
   EXPECT_EQ(poor.invalid_poses(), 0u);
   EXPECT_GT(poor.min_dihedral_deg(), 0.5);
 }

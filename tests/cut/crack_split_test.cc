@@ -116,6 +116,47 @@ void ExpectTiles(OneTet& tet, const TetCrack& crack, const CrackSplit& split) {
   for (const Triangle& c : split.crack_faces) EXPECT_TRUE(faces.contains(Sorted(c)));
 }
 
+// Whether every piece reaches a triangle of the tet's faces off the crack through faces off the
+// crack: none is walled in (cut free of the rest of the tet and of its neighbours), unless no
+// triangle of the tet's faces is off the crack.
+void ExpectNoPieceWalledIn(const TetCrack& crack, const CrackSplit& split) {
+  std::set<Triangle> cracked, outside;
+  for (const Triangle& c : split.crack_faces) cracked.insert(Sorted(c));
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.triangles) outside.insert(Sorted(t));
+  }
+  const std::size_t n = split.tets.size();
+  std::vector<bool> reached(n, false);
+  const auto faces_of = [&](std::size_t i) {
+    std::vector<Triangle> faces;
+    const mesh::TetVertices& t = split.tets[i];
+    for (const auto& f : mesh::kTetFaces) faces.push_back(Sorted({t[f[0]], t[f[1]], t[f[2]]}));
+    return faces;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const Triangle& f : faces_of(i)) {
+      if (outside.contains(f) && !cracked.contains(f)) reached[i] = true;
+    }
+  }
+  // Where every triangle of the tet's faces lies on the crack, nothing can hold a piece.
+  if (std::none_of(reached.begin(), reached.end(), [](bool r) { return r; })) return;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n && !reached[i]; ++j) {
+        if (!reached[j]) continue;
+        for (const Triangle& f : faces_of(i)) {
+          const std::vector<Triangle> other = faces_of(j);
+          if (!cracked.contains(f) && std::find(other.begin(), other.end(), f) != other.end()) {
+            reached[i] = grew = true;
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) EXPECT_TRUE(reached[i]) << "piece " << i << " walled in";
+}
+
 TEST(CrackSplit, AnyPointsOnATetSplitIt) {
   std::mt19937_64 random(11);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -143,6 +184,7 @@ TEST(CrackSplit, AnyPointsOnATetSplitIt) {
     }
     SCOPED_TRACE(testing::Message() << "trial " << trial);
     ExpectTiles(tet, crack, *split);
+    ExpectNoPieceWalledIn(crack, *split);
     if (HasInnerCrack(crack)) {
       EXPECT_FALSE(split->crack_faces.empty());
     }
@@ -226,8 +268,8 @@ TEST(CrackSplit, NoPointsLeavesTheTetWholeAndAFaceOnTheCrackIsACrackFace) {
 }
 
 // Three corners on the crack (their face lies on it) and the two edges from two of them to the
-// fourth cut: the cone spans the crack from the traces that leave the face, not from the edges of
-// the face's triangles on the crack, so no piece is walled in by crack faces (cut free).
+// fourth cut: the cone's faces through the on-crack face's edges would wall in the piece over
+// it; none is.
 TEST(CrackSplit, AConeWallsInNoPieceOverAFaceOnTheCrack) {
   OneTet tet;
   for (const int i : {1, 2, 3}) tet.CornerOnCrack(i);
@@ -237,15 +279,23 @@ TEST(CrackSplit, AConeWallsInNoPieceOverAFaceOnTheCrack) {
   ASSERT_FALSE(SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); }));
   const CrackSplit split = SplitAsCone(crack, tet.Apex({0.25, 0.25, 0.25, 0.25}));
   ExpectTiles(tet, crack, split);
-  std::set<Triangle> cracked;
-  for (const Triangle& c : split.crack_faces) cracked.insert(Sorted(c));
-  for (const mesh::TetVertices& t : split.tets) {
-    int on_crack = 0;
-    for (const auto& f : mesh::kTetFaces)
-      on_crack += cracked.contains(Sorted({t[f[0]], t[f[1]], t[f[2]]}));
-    EXPECT_LT(on_crack, 4);
-    EXPECT_LT(on_crack, 3) << "a piece held by one face only";
-  }
+  ExpectNoPieceWalledIn(crack, split);
+}
+
+// A corner on the crack whose three edges are cut beside it (the blade passing near a vertex it
+// snapped to): the corner cut off would be walled in by its three faces' triangles on the crack
+// and the cut; it stays with the rest of the tet.
+TEST(CrackSplit, ACornerOnTheCrackCutOffIsNotWalledIn) {
+  OneTet tet;
+  tet.CornerOnCrack(0);
+  for (const int j : {1, 2, 3}) tet.CutEdge(0, j, 0.4);
+  const TetCrack crack = tet.Crack();
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->cut_case, CutCase::kOneCornerOff);
+  ExpectTiles(tet, crack, *split);
+  ExpectNoPieceWalledIn(crack, *split);
 }
 
 }  // namespace
