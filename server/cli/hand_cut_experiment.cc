@@ -42,7 +42,7 @@ void Add(const kerf::v1::CutReport& r, Row* row) {
   ++row->paths;
   row->min_coverage = std::min(row->min_coverage, r.coverage());
   row->coverage += r.coverage();
-  row->min_dihedral = std::min(row->min_dihedral, r.min_dihedral_deg());
+  if (r.new_tets() > 0) row->min_dihedral = std::min(row->min_dihedral, r.min_dihedral_deg());
   row->seconds += r.cut_seconds();
   row->poses += r.poses();
   row->lagging += r.poses_not_covered();
@@ -129,9 +129,10 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
   for (const Row& r : rows) {
     absl::StrAppendFormat(
         &out,
-        "| %s | %s | %s | %.3f / %.3f | %u | %u | %.2f | %.2f | %u of %u | %u | %s | %u | %.1f |\n",
+        "| %s | %s | %s | %.3f / %.3f | %u | %u | %.2f | %s | %u of %u | %u | %s | %u | %.1f |\n",
         r.mesh, r.family, r.cutting, r.min_coverage, r.coverage / r.paths, r.overcut, r.unpaired,
-        r.cut_tets ? static_cast<double>(r.new_tets) / r.cut_tets : 0.0, r.min_dihedral, r.slivers,
+        r.cut_tets ? static_cast<double>(r.new_tets) / r.cut_tets : 0.0,
+        r.new_tets > 0 ? absl::StrFormat("%.2f", r.min_dihedral) : std::string("-"), r.slivers,
         r.made, r.under_one,
         check == CheckWhen::kEveryPose
             ? absl::StrFormat("%.1f%%", 100.0 * r.lagging / std::max<std::size_t>(r.poses, 1))
