@@ -16,6 +16,7 @@
 #include "geometry/tet_measures.h"
 #include "lab/crack_fidelity.h"
 #include "mesh/connected_components.h"
+#include "mesh/cut_mesh_check.h"
 #include "mesh/cut_surface.h"
 #include "mesh/face_tiling.h"
 #include "mesh/io/mesh_file.h"
@@ -98,7 +99,13 @@ class PoseChecks {
         report_(report),
         original_vertices_(m->vertex_index_bound()),
         volume_(TotalRestVolume(*m)),
-        uncut_(*m) {}
+        uncut_(*m) {
+    if (options.check == CheckWhen::kEveryPose) {
+      incremental_.emplace(
+          uncut_, m_, [cutter](mesh::TetId t) { return cutter->SourceTet(t); },
+          [cutter](mesh::VertexId v) { return cutter->PartedFrom(v); });
+    }
+  }
 
   absl::Status Open() {
     if (!options_.trace_path.empty()) {
@@ -124,7 +131,7 @@ class PoseChecks {
   // After pose `i` (poses.size(): withdrawn).
   absl::Status After(std::size_t i) {
     const bool withdrawn = i == poses_.size();
-    const double crack_area = mesh::MeasureCrackArea(*m_);
+    const double crack_area = trace_ != nullptr ? mesh::MeasureCrackArea(*m_) : 0;
     const absl::Status valid_status = Valid();
     const bool valid = valid_status.ok();
     if (!valid) {
@@ -150,7 +157,9 @@ class PoseChecks {
   }
 
  private:
-  absl::Status Valid() const {
+  // Every pose: what changed since the last (mesh::CutMeshCheck); at the end only: the whole mesh.
+  absl::Status Valid() {
+    if (incremental_) return incremental_->Check();
     if (absl::Status s = mesh::ValidateMesh(*m_); !s.ok()) return s;
     const double volume = TotalRestVolume(*m_);
     if (std::abs(volume - volume_) > 1e-12 * volume_) {
@@ -188,6 +197,7 @@ class PoseChecks {
   std::uint32_t original_vertices_;
   double volume_;
   mesh::TetMesh uncut_;
+  std::optional<mesh::CutMeshCheck> incremental_;
   std::FILE* trace_ = nullptr;
 };
 

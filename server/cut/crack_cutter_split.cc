@@ -94,6 +94,9 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
         SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners,
                                            blade != nullptr ? blade->apex : ApexWeights(crack)));
   }
+  // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
+  // between its points and the crack stay open until it moves on.
+  if (blade == nullptr) ReleaseWalledInPieces(crack, &*split);
   std::vector<FaceKey> crack_faces;
   for (const auto& f : split->crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
   std::sort(crack_faces.begin(), crack_faces.end());

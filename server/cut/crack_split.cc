@@ -54,86 +54,6 @@ std::optional<VertexId> EdgePoint(const TetCrack& crack, int i, int j) {
   return std::nullopt;
 }
 
-// Leaves out the inner crack faces that wall pieces in: a group of pieces joined through faces
-// off the crack, none of whose faces on the tet's faces is off the crack, would be cut free
-// (the crack's traces there run in the tet's faces, or pass a corner on the crack and its edges'
-// points at once). Their inner crack faces go, so they stay with the rest of the tet.
-void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split) {
-  const auto on_a_face = [&](const Triangle& f) {
-    for (int k = 0; k < 4; ++k) {
-      const std::vector<VertexId>& on_face = FaceVertices(crack, k);
-      if (Contains(on_face, f[0]) && Contains(on_face, f[1]) && Contains(on_face, f[2])) {
-        return true;
-      }
-    }
-    return false;
-  };
-  const std::size_t n = split->tets.size();
-  for (bool released = true; released;) {
-    std::vector<Triangle> cracked;
-    for (const Triangle& c : split->crack_faces) cracked.push_back(Sorted(c));
-    std::sort(cracked.begin(), cracked.end());
-    const auto is_crack = [&](const Triangle& f) {
-      return std::binary_search(cracked.begin(), cracked.end(), f);
-    };
-    std::vector<std::size_t> parent(n);
-    for (std::size_t i = 0; i < n; ++i) parent[i] = i;
-    const auto root = [&](std::size_t i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
-    std::vector<bool> anchored(n, false);
-    std::map<Triangle, std::size_t> seen;
-    for (std::size_t i = 0; i < n; ++i) {
-      const TetVertices& t = split->tets[i];
-      for (const auto& f : mesh::kTetFaces) {
-        const Triangle face = Sorted({t[f[0]], t[f[1]], t[f[2]]});
-        if (is_crack(face)) continue;
-        if (on_a_face(face)) {
-          anchored[i] = true;
-        } else if (const auto [at, first] = seen.try_emplace(face, i); !first) {
-          parent[root(i)] = root(at->second);
-        }
-      }
-    }
-    std::vector<bool> group_anchored(n, false);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (anchored[i]) group_anchored[root(i)] = true;
-    }
-    // Each group walled in joins one group beside it: the crack faces between them go.
-    std::map<Triangle, std::vector<std::size_t>> inner_crack;  // by face, its pieces
-    for (std::size_t i = 0; i < n; ++i) {
-      const TetVertices& t = split->tets[i];
-      for (const auto& f : mesh::kTetFaces) {
-        const Triangle face = Sorted({t[f[0]], t[f[1]], t[f[2]]});
-        if (is_crack(face) && !on_a_face(face)) inner_crack[face].push_back(i);
-      }
-    }
-    std::map<std::size_t, std::size_t> joins;  // walled group -> the group it joins
-    for (const auto& [face, pieces] : inner_crack) {
-      if (pieces.size() != 2) continue;
-      const std::size_t a = root(pieces[0]), b = root(pieces[1]);
-      if (a == b) continue;
-      if (!group_anchored[a] && !joins.contains(a)) joins[a] = b;
-      if (!group_anchored[b] && !joins.contains(b)) joins[b] = a;
-    }
-    std::vector<Triangle> walls;
-    for (const auto& [face, pieces] : inner_crack) {
-      if (pieces.size() != 2) continue;
-      const std::size_t a = root(pieces[0]), b = root(pieces[1]);
-      const auto joins_a = joins.find(a), joins_b = joins.find(b);
-      if ((joins_a != joins.end() && joins_a->second == b) ||
-          (joins_b != joins.end() && joins_b->second == a)) {
-        walls.push_back(face);
-      }
-    }
-    released = !walls.empty();
-    std::erase_if(split->crack_faces, [&](const Triangle& c) {
-      return std::find(walls.begin(), walls.end(), Sorted(c)) != walls.end();
-    });
-  }
-}
-
 void AddWholeFaceCracks(const TetCrack& crack, CrackSplit* split) {
   for (const FaceSplit& f : crack.faces) {
     split->crack_faces.insert(split->crack_faces.end(), f.on_crack.begin(), f.on_crack.end());
@@ -273,7 +193,6 @@ std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
       split.tets = {near_a, near_b};
       if (inner) split.crack_faces.push_back({e, crack.corners[c], crack.corners[d]});
       AddWholeFaceCracks(crack, &split);
-      ReleaseWalledInPieces(crack, &split);
       return split;
     }
     return std::nullopt;
@@ -293,7 +212,6 @@ std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
   split.tets = std::move(minimal.tets);
   split.crack_faces = InnerFacesOf(crack, split.tets);
   AddWholeFaceCracks(crack, &split);
-  ReleaseWalledInPieces(crack, &split);
   return split;
 }
 
@@ -319,8 +237,83 @@ CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {
     for (const auto& s : Traces(crack)) split.crack_faces.push_back({apex, s[0], s[1]});
   }
   AddWholeFaceCracks(crack, &split);
-  ReleaseWalledInPieces(crack, &split);
   return split;
+}
+
+void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split) {
+  const auto on_a_face = [&](const Triangle& f) {
+    for (int k = 0; k < 4; ++k) {
+      const std::vector<VertexId>& on_face = FaceVertices(crack, k);
+      if (Contains(on_face, f[0]) && Contains(on_face, f[1]) && Contains(on_face, f[2])) {
+        return true;
+      }
+    }
+    return false;
+  };
+  const std::size_t n = split->tets.size();
+  for (bool released = true; released;) {
+    std::vector<Triangle> cracked;
+    for (const Triangle& c : split->crack_faces) cracked.push_back(Sorted(c));
+    std::sort(cracked.begin(), cracked.end());
+    const auto is_crack = [&](const Triangle& f) {
+      return std::binary_search(cracked.begin(), cracked.end(), f);
+    };
+    std::vector<std::size_t> parent(n);
+    for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+    const auto root = [&](std::size_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    std::vector<bool> anchored(n, false);
+    std::map<Triangle, std::size_t> seen;
+    for (std::size_t i = 0; i < n; ++i) {
+      const TetVertices& t = split->tets[i];
+      for (const auto& f : mesh::kTetFaces) {
+        const Triangle face = Sorted({t[f[0]], t[f[1]], t[f[2]]});
+        if (is_crack(face)) continue;
+        if (on_a_face(face)) {
+          anchored[i] = true;
+        } else if (const auto [at, first] = seen.try_emplace(face, i); !first) {
+          parent[root(i)] = root(at->second);
+        }
+      }
+    }
+    std::vector<bool> group_anchored(n, false);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (anchored[i]) group_anchored[root(i)] = true;
+    }
+    // Each group walled in joins one group beside it: the crack faces between them go.
+    std::map<Triangle, std::vector<std::size_t>> inner_crack;  // by face, its pieces
+    for (std::size_t i = 0; i < n; ++i) {
+      const TetVertices& t = split->tets[i];
+      for (const auto& f : mesh::kTetFaces) {
+        const Triangle face = Sorted({t[f[0]], t[f[1]], t[f[2]]});
+        if (is_crack(face) && !on_a_face(face)) inner_crack[face].push_back(i);
+      }
+    }
+    std::map<std::size_t, std::size_t> joins;  // walled group -> the group it joins
+    for (const auto& [face, pieces] : inner_crack) {
+      if (pieces.size() != 2) continue;
+      const std::size_t a = root(pieces[0]), b = root(pieces[1]);
+      if (a == b) continue;
+      if (!group_anchored[a] && !joins.contains(a)) joins[a] = b;
+      if (!group_anchored[b] && !joins.contains(b)) joins[b] = a;
+    }
+    std::vector<Triangle> walls;
+    for (const auto& [face, pieces] : inner_crack) {
+      if (pieces.size() != 2) continue;
+      const std::size_t a = root(pieces[0]), b = root(pieces[1]);
+      const auto joins_a = joins.find(a), joins_b = joins.find(b);
+      if ((joins_a != joins.end() && joins_a->second == b) ||
+          (joins_b != joins.end() && joins_b->second == a)) {
+        walls.push_back(face);
+      }
+    }
+    released = !walls.empty();
+    std::erase_if(split->crack_faces, [&](const Triangle& c) {
+      return std::find(walls.begin(), walls.end(), Sorted(c)) != walls.end();
+    });
+  }
 }
 
 }  // namespace kerf::cut

@@ -7,10 +7,8 @@
 //
 // The crack inside the tet is spanned by the traces of its faces: where they do not all lie on
 // one face, the crack's faces are the cone's faces from the apex through each trace segment (or
-// the minimal case's crack). A triangle of a face on the crack is a crack face too. No piece is
-// walled in: inner crack faces that would cut pieces free of the rest of the tet (every face of
-// theirs on the tet's faces on the crack) are left out, the crack running in the tet's faces
-// there. Which
+// the minimal case's crack). A triangle of a face on the crack is a crack face too. A split may
+// wall pieces in (ReleaseWalledInPieces lets them out). Which
 // vertices the crack parts is not decided here (cut/star_parting.h).
 #pragma once
 
@@ -59,6 +57,12 @@ std::optional<CrackSplit> SplitWithoutApex(
 
 // The cone from `apex`, a vertex strictly inside the tet, over its faces' triangles.
 CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
+
+// Leaves out the inner crack faces that wall pieces in: a group of pieces joined through faces
+// off the crack, none of whose triangles on the tet's faces is off the crack, would be cut free
+// (the crack's traces there run in the tet's faces, or pass a corner on the crack and its edges'
+// points at once). Each such group joins one group beside it: the crack faces between them go.
+void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split);
 
 // A cone's apex is kept at least this far (barycentric) from the tet's faces.
 inline constexpr double kApexMargin = 0.1;

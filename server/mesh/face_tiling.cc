@@ -52,53 +52,77 @@ std::vector<Triangle> TrianglesOnFace(const TetMesh& mesh, const TetVertices& co
   return triangles;
 }
 
-absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
-                                     const std::function<TetId(TetId)>& source_of,
-                                     const std::function<VertexId(VertexId)>& same_as) {
-  // The triangles of the cut mesh on each face (tet, local face) of the uncut one (its
-  // vertices are the cut mesh's, at the same rest positions).
-  absl::flat_hash_map<std::pair<std::uint32_t, int>, std::vector<Triangle>> tiles;
-  for (const TetId piece : cut.tets()) {
-    const TetId source = source_of(piece);
+FaceTiles TilesOfSource(const TetMesh& uncut, const TetMesh& cut, TetId source,
+                        std::span<const TetId> pieces) {
+  FaceTiles tiles;
+  for (const TetId piece : pieces) {
     for (int k = 0; k < 4; ++k) {
       for (const Triangle& t : TrianglesOnFace(cut, uncut.tet(source), k, {&cut.tet(piece), 1})) {
-        tiles[{Index(source), k}].push_back(t);
+        tiles[k].push_back(t);
       }
     }
   }
+  for (std::vector<Triangle>& face : tiles) std::sort(face.begin(), face.end());
+  return tiles;
+}
+
+absl::Status CheckFaceTiled(const TetMesh& uncut, const TetMesh& cut, TetId source, int k,
+                            const std::vector<Triangle>& tiles,
+                            const std::optional<OtherSide>& other,
+                            const std::function<VertexId(VertexId)>& same_as) {
+  const TetVertices& corners = uncut.tet(source);
+  const auto& f = kTetFaces[k];
+  const Triangle face = Sorted({corners[f[0]], corners[f[1]], corners[f[2]]});
+  double area = 0;
+  for (const Triangle& tile : tiles) area += Area(cut, tile);
+  if (std::abs(area - Area(uncut, face)) > 1e-9 * Area(uncut, face)) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("face ", Describe(face), " of tet ", Index(source), " is tiled ",
+                     area / Area(uncut, face), " times by the tets cut from it"));
+  }
+  if (!other) return absl::OkStatus();
+  const auto canonical = [&](std::vector<Triangle> triangles) {
+    if (!same_as) return triangles;
+    for (Triangle& triangle : triangles) {
+      for (VertexId& v : triangle) v = same_as(v);
+      triangle = Sorted(triangle);
+    }
+    std::sort(triangles.begin(), triangles.end());
+    return triangles;
+  };
+  if (canonical(*other->tiles) != canonical(tiles)) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("face ", Describe(face), " is split differently in the pieces of tets ",
+                     Index(other->tet), " and ", Index(source)));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status CheckOriginalFacesTiled(const TetMesh& uncut, const TetMesh& cut,
+                                     const std::function<TetId(TetId)>& source_of,
+                                     const std::function<VertexId(VertexId)>& same_as) {
+  absl::flat_hash_map<std::uint32_t, std::vector<TetId>> pieces;
+  for (const TetId piece : cut.tets()) pieces[Index(source_of(piece))].push_back(piece);
+  absl::flat_hash_map<std::uint32_t, FaceTiles> tiles;
+  for (const TetId t : uncut.tets())
+    tiles[Index(t)] = TilesOfSource(uncut, cut, t, pieces[Index(t)]);
   // Each face tiled once, and an interior face alike from both sides.
-  absl::flat_hash_map<std::array<std::uint32_t, 3>, std::pair<std::uint32_t, int>> first_side;
+  absl::flat_hash_map<std::array<std::uint32_t, 3>, std::pair<TetId, int>> first_side;
   for (const TetId t : uncut.tets()) {
     const TetVertices& corners = uncut.tet(t);
     for (int k = 0; k < 4; ++k) {
       const auto& f = kTetFaces[k];
       const Triangle face = Sorted({corners[f[0]], corners[f[1]], corners[f[2]]});
-      std::vector<Triangle>& mine = tiles[{Index(t), k}];
-      std::sort(mine.begin(), mine.end());  // gathered piece by piece
-      double area = 0;
-      for (const Triangle& tile : mine) area += Area(cut, tile);
-      if (std::abs(area - Area(uncut, face)) > 1e-9 * Area(uncut, face)) {
-        return absl::FailedPreconditionError(
-            absl::StrCat("face ", Describe(face), " of tet ", Index(t), " is tiled ",
-                         area / Area(uncut, face), " times by the tets cut from it"));
-      }
       const auto [other, fresh] = first_side.try_emplace(
-          std::array<std::uint32_t, 3>{Index(face[0]), Index(face[1]), Index(face[2])}, Index(t),
-          k);
-      if (fresh) continue;
-      const auto canonical = [&](std::vector<Triangle> triangles) {
-        if (!same_as) return triangles;
-        for (Triangle& triangle : triangles) {
-          for (VertexId& v : triangle) v = same_as(v);
-          triangle = Sorted(triangle);
-        }
-        std::sort(triangles.begin(), triangles.end());
-        return triangles;
-      };
-      if (canonical(tiles[other->second]) != canonical(mine)) {
-        return absl::FailedPreconditionError(
-            absl::StrCat("face ", Describe(face), " is split differently in the pieces of tets ",
-                         other->second.first, " and ", Index(t)));
+          std::array<std::uint32_t, 3>{Index(face[0]), Index(face[1]), Index(face[2])}, t, k);
+      std::optional<OtherSide> across;
+      if (!fresh) {
+        across = OtherSide{other->second.first,
+                           &tiles.at(Index(other->second.first))[other->second.second]};
+      }
+      if (absl::Status s = CheckFaceTiled(uncut, cut, t, k, tiles.at(Index(t))[k], across, same_as);
+          !s.ok()) {
+        return s;
       }
     }
   }

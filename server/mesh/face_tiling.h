@@ -9,6 +9,7 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -23,6 +24,24 @@ namespace kerf::mesh {
 std::vector<std::array<VertexId, 3>> TrianglesOnFace(const TetMesh& mesh,
                                                      const TetVertices& corners, int k,
                                                      std::span<const TetVertices> pieces);
+
+// The triangles of `pieces` (live tets of `cut`, its vertices at the rest positions `uncut`'s
+// have) on each face of `uncut`'s tet `source`, each face's list sorted. O(pieces).
+using FaceTiles = std::array<std::vector<std::array<VertexId, 3>>, 4>;
+FaceTiles TilesOfSource(const TetMesh& uncut, const TetMesh& cut, TetId source,
+                        std::span<const TetId> pieces);
+
+// Face k of `source` is tiled once by `tiles` (its area, to 1e-9); and where `other` is given
+// (the tet across the face, and the triangles on its side), alike from both sides once each
+// vertex is taken as `same_as(v)`. OK, or FAILED_PRECONDITION naming the face.
+struct OtherSide {
+  TetId tet;
+  const std::vector<std::array<VertexId, 3>>* tiles;
+};
+absl::Status CheckFaceTiled(const TetMesh& uncut, const TetMesh& cut, TetId source, int k,
+                            const std::vector<std::array<VertexId, 3>>& tiles,
+                            const std::optional<OtherSide>& other,
+                            const std::function<VertexId(VertexId)>& same_as);
 
 // `cut` is `uncut` after cutting: its vertices keep their ids and rest positions, and
 // `source_of(t)` is the tet of `uncut` that live tet t of `cut` came from. An interior face is

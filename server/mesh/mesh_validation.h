@@ -1,6 +1,7 @@
 // Structural checks of a tet mesh, reporting each defect precisely.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,16 @@ struct MeshDefect {
 // Every defect in the mesh; empty for a valid mesh. Each over-shared face is reported once.
 // O(tets * star size).
 std::vector<MeshDefect> FindMeshDefects(const TetMesh& mesh);
+// The defects of the live tets among `tets` (their volume, vertices and faces) and of the live
+// vertices among `vertices` (used by no tet): after a change, those it added and those around
+// what it removed are all that can have become defective. O((tets + vertices) * star size).
+std::vector<MeshDefect> FindMeshDefectsAmong(const TetMesh& mesh, std::span<const TetId> tets,
+                                             std::span<const VertexId> vertices);
 
 // OK for a valid mesh, else FAILED_PRECONDITION naming the defect count and the first few.
 absl::Status ValidateMesh(const TetMesh& mesh);
+// The same for FindMeshDefectsAmong.
+absl::Status ValidateMeshAmong(const TetMesh& mesh, std::span<const TetId> tets,
+                               std::span<const VertexId> vertices);
 
 }  // namespace kerf::mesh

@@ -184,6 +184,8 @@ TEST(CrackSplit, AnyPointsOnATetSplitIt) {
     }
     SCOPED_TRACE(testing::Message() << "trial " << trial);
     ExpectTiles(tet, crack, *split);
+    ReleaseWalledInPieces(crack, &*split);
+    ExpectTiles(tet, crack, *split);
     ExpectNoPieceWalledIn(crack, *split);
     if (HasInnerCrack(crack)) {
       EXPECT_FALSE(split->crack_faces.empty());
@@ -277,23 +279,25 @@ TEST(CrackSplit, AConeWallsInNoPieceOverAFaceOnTheCrack) {
   tet.CutEdge(0, 2, 0.3);
   const TetCrack crack = tet.Crack();
   ASSERT_FALSE(SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); }));
-  const CrackSplit split = SplitAsCone(crack, tet.Apex({0.25, 0.25, 0.25, 0.25}));
+  CrackSplit split = SplitAsCone(crack, tet.Apex({0.25, 0.25, 0.25, 0.25}));
+  ReleaseWalledInPieces(crack, &split);
   ExpectTiles(tet, crack, split);
   ExpectNoPieceWalledIn(crack, split);
 }
 
 // A corner on the crack whose three edges are cut beside it (the blade passing near a vertex it
 // snapped to): the corner cut off would be walled in by its three faces' triangles on the crack
-// and the cut; it stays with the rest of the tet.
+// and the cut; let out, it stays with the rest of the tet.
 TEST(CrackSplit, ACornerOnTheCrackCutOffIsNotWalledIn) {
   OneTet tet;
   tet.CornerOnCrack(0);
   for (const int j : {1, 2, 3}) tet.CutEdge(0, j, 0.4);
   const TetCrack crack = tet.Crack();
-  const std::optional<CrackSplit> split =
+  std::optional<CrackSplit> split =
       SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kOneCornerOff);
+  ReleaseWalledInPieces(crack, &*split);
   ExpectTiles(tet, crack, *split);
   ExpectNoPieceWalledIn(crack, *split);
 }
