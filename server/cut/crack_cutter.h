@@ -209,6 +209,11 @@ class CrackCutter {
   Eigen::Vector4d ApexWeights(const TetCrack& crack) const;
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& origins,
                             const Eigen::Vector4d& weights);
+  // Moves `v` (a point the cut made, or a copy of one) to `weights` on `origins` as the tets
+  // around it name them, so it takes its own side's place and state; a copy whose tets lack
+  // them (a chip the crack cut off) keeps its displacement.
+  void PlaceOnItsSide(mesh::VertexId v, const std::array<mesh::VertexId, 4>& origins,
+                      const Eigen::Vector4d& weights);
   // `from` (origins) as the ids of the unit being split (placing_ids_).
   std::array<mesh::VertexId, 4> Placed(std::array<mesh::VertexId, 4> from) const;
   // `origins` as the tets around `v` name them; none if they lack one `weights` uses.
@@ -261,6 +266,13 @@ class CrackCutter {
   // How many pieces a tissue's tet stands in now, for those ever replaced.
   absl::flat_hash_map<mesh::TetId, std::size_t> pieces_of_source_;
   std::vector<MadeVertex> made_vertices_;
+  // Where each point the cut made lies: weights on origins.
+  struct PointRecipe {
+    std::array<mesh::VertexId, 4> origins;
+    Eigen::Vector4d weights;
+  };
+  absl::flat_hash_map<mesh::VertexId, PointRecipe> recipe_;
+  std::vector<mesh::VertexId> new_points_;  // made since the last parting
   // The unit being split: its corners (origins) and their placed ids.
   mesh::TetVertices placing_origins_{}, placing_ids_{};
   CutStatistics statistics_;

@@ -218,19 +218,9 @@ VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<Vert
   if (it == temporary_.end() || !mesh_->IsAlive(it->second)) {
     return temporary_[place] = MakeVertex(origins, weights);
   }
-  // Each copy moves with the side it is on: placed by the tets around it. A copy whose tets do
-  // not hold the points it is placed on (a chip the crack cut off) keeps its displacement.
+  recipe_[it->second] = {origins, weights};
   for (const VertexId v : parting_.Ids(it->second)) {
-    if (!mesh_->IsAlive(v)) continue;
-    const std::optional<std::array<VertexId, 4>> from = PlacedAround(v, origins, weights);
-    Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 4; ++k) {
-      rest += weights[k] * mesh_->rest_position(origins[k]);
-      if (from) current += weights[k] * mesh_->current_position((*from)[k]);
-    }
-    if (!from) current = rest + mesh_->current_position(v) - mesh_->rest_position(v);
-    KERF_CHECK(mesh_->MoveVertex(v, rest, current).ok());
-    if (from) made_vertices_.push_back({v, *from, weights});
+    if (mesh_->IsAlive(v)) PlaceOnItsSide(v, origins, weights);
   }
   ++statistics_.moved;
   return it->second;
@@ -275,6 +265,19 @@ std::optional<std::array<VertexId, 4>> CrackCutter::PlacedAround(
   return origins;
 }
 
+void CrackCutter::PlaceOnItsSide(VertexId v, const std::array<VertexId, 4>& origins,
+                                 const Eigen::Vector4d& weights) {
+  const std::optional<std::array<VertexId, 4>> from = PlacedAround(v, origins, weights);
+  Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    rest += weights[k] * mesh_->rest_position(origins[k]);
+    if (from) current += weights[k] * mesh_->current_position((*from)[k]);
+  }
+  if (!from) current = rest + mesh_->current_position(v) - mesh_->rest_position(v);
+  KERF_CHECK(mesh_->MoveVertex(v, rest, current).ok());
+  if (from) made_vertices_.push_back({v, *from, weights});
+}
+
 VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& origins,
                                  const Eigen::Vector4d& weights) {
   const std::array<VertexId, 4> from = Placed(origins);
@@ -286,6 +289,8 @@ VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& origins,
   }
   const VertexId v = mesh_->AddVertex(rest, current);
   made_vertices_.push_back({v, from, weights});
+  recipe_[v] = {origins, weights};
+  new_points_.push_back(v);
   return v;
 }
 
@@ -355,9 +360,28 @@ void CrackCutter::Repart(const std::vector<VertexId>& origins) {
       std::replace(members.begin(), members.end(), old_tet, new_tet);
     }
   }
+  // A copy takes the place and state of the vertex its tets used; a copy of a point the cut
+  // made then moves to where its own side has the point (the sides of an opened crack are apart:
+  // a point on an edge lying in the crack, cut again, say), after the copies it is placed on:
+  // points in the order they were made, each placed on vertices older than itself.
+  // So does every point made by this split: parting may have renamed the corners it was placed on
+  // (a corner's part taking the origin, or a copy).
+  std::vector<VertexId> points;
   for (const VertexCopy& c : changes.made) {
-    made_vertices_.push_back({c.copy, {c.from, c.from, c.from, c.from}, {1, 0, 0, 0}});
     if (parting_.Origin(c.copy) != c.copy) ++statistics_.parted_vertices;
+    made_vertices_.push_back({c.copy, {c.from, c.from, c.from, c.from}, {1, 0, 0, 0}});
+    if (recipe_.contains(parting_.Origin(c.copy))) points.push_back(c.copy);
+  }
+  for (const VertexId p : new_points_) {
+    if (mesh_->IsAlive(p)) points.push_back(p);
+  }
+  new_points_.clear();
+  std::sort(points.begin(), points.end(), [&](VertexId a, VertexId b) {
+    return Index(parting_.Origin(a)) < Index(parting_.Origin(b));
+  });
+  for (const VertexId v : points) {
+    const PointRecipe& recipe = recipe_.at(parting_.Origin(v));
+    PlaceOnItsSide(v, recipe.origins, recipe.weights);
   }
 }
 
