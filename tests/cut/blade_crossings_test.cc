@@ -4,22 +4,13 @@
 
 #include <algorithm>
 
+#include "support/unit_tet.h"
+
 namespace kerf::cut {
 namespace {
 
 using mesh::TetMesh;
 using mesh::VertexId;
-
-// The unit tet: corners 0 (origin), 1 (x), 2 (y), 3 (z).
-TetMesh OneTet() {
-  TetMesh m;
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
-                                   Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1)}) {
-    m.AddVertex(p);
-  }
-  EXPECT_TRUE(m.AddTet({VertexId(0), VertexId(1), VertexId(2), VertexId(3)}).ok());
-  return m;
-}
 
 const auto kNoEdge = [](VertexId, VertexId) { return false; };
 const auto kNoFace = [](const std::array<VertexId, 3>&) { return false; };
@@ -31,7 +22,7 @@ std::vector<mesh::TetVertices> All(const TetMesh& m) {
 }
 
 TEST(BladeCrossings, ASweepThroughATetCrossesTheEdgesItPasses) {
-  TetMesh m = OneTet();
+  TetMesh m = kerf::testing::UnitTet();
   BladeCrossings crossings = *BladeCrossings::Create(&m, 1);
   // The plane x = 0.25 swept from below the tet to above it: the three edges from corner 1.
   const BladePose from{0, {0.25, -1, -1}, {0.25, 2, -1}}, to{1, {0.25, -1, 2}, {0.25, 2, 2}};
@@ -51,7 +42,7 @@ TEST(BladeCrossings, ASweepThroughATetCrossesTheEdgesItPasses) {
 }
 
 TEST(BladeCrossings, TheTipGoingInCrossesAFace) {
-  TetMesh m = OneTet();
+  TetMesh m = kerf::testing::UnitTet();
   BladeCrossings crossings = *BladeCrossings::Create(&m, 1);
   // The tip goes up through the face z = 0 into the tet.
   const BladePose from{0, {0.2, 0.3, -0.5}, {0.2, 0.3, -1.5}},
@@ -70,7 +61,7 @@ TEST(BladeCrossings, TheTipGoingInCrossesAFace) {
 }
 
 TEST(BladeCrossings, ATipAlongAFacesPlaneCrossesTheEdgesItPasses) {
-  TetMesh m = OneTet();
+  TetMesh m = kerf::testing::UnitTet();
   BladeCrossings crossings = *BladeCrossings::Create(&m, 1);
   // The blade stands in the plane y = 0 (face 0-1-3's) and its tip runs along z = 0.5 across
   // edge 0-3 at its middle; the blade's edge never crosses an edge there, its tip's path does.
@@ -84,7 +75,7 @@ TEST(BladeCrossings, ATipAlongAFacesPlaneCrossesTheEdgesItPasses) {
 }
 
 TEST(BladeCrossings, TissueMovingAcrossAStillBladeIsCut) {
-  TetMesh m = OneTet();
+  TetMesh m = kerf::testing::UnitTet();
   BladeCrossings crossings = *BladeCrossings::Create(&m, 1);
   const BladePose still_a{0, {0.25, -1, -1}, {0.25, 2, -1}};
   const BladePose still_b{1, {0.25, -1, -1}, {0.25, 2, -1}};

@@ -9,22 +9,12 @@
 #include "geometry/tet_measures.h"
 #include "mesh/face_tiling.h"
 #include "mesh/mesh_validation.h"
+#include "support/unit_tet.h"
 
 namespace kerf::cut {
 namespace {
 
 using mesh::TetMesh;
-
-TetMesh OneTet() {
-  TetMesh m;
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
-                                   Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1)}) {
-    m.AddVertex(p);
-  }
-  EXPECT_TRUE(
-      m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)}).ok());
-  return m;
-}
 
 constexpr BladeLimits kLoose = {.max_length = 10, .max_step = 10, .max_speed = 100};
 
@@ -36,7 +26,7 @@ double Volume(const TetMesh& m, const mesh::TetVertices& v) {
 // A blade entering through the face z = 0, its tip inside: the tet is held as the pieces it
 // stands in now, which fill it; a blade beside the tet holds nothing.
 TEST(CrackCutterBlade, TheTetsHoldingTheBladeAreThePiecesOfTheTetItOpens) {
-  TetMesh m = OneTet();
+  TetMesh m = kerf::testing::UnitTet();
   CrackCutter cutter = *CrackCutter::Create(&m, 1, kLoose);
   ASSERT_TRUE(cutter.ApplyPose({0, {0.2, 0.2, -1}, {0.2, 0.2, -2}}).ok());
   EXPECT_TRUE(cutter.TetsHoldingBlade({0, {0.2, 0.2, -1}, {0.2, 0.2, -2}}).empty());
@@ -56,7 +46,7 @@ TEST(CrackCutterBlade, TheTetsHoldingTheBladeAreThePiecesOfTheTetItOpens) {
 // with no guard nothing is.
 TEST(CrackCutterBlade, ThinPiecesOnTheBladeAreSoftenedWhileItIsThere) {
   for (const double guard : {kDefaultMinTemporaryHeight, 0.0}) {
-    TetMesh m = OneTet();
+    TetMesh m = kerf::testing::UnitTet();
     CrackCutter cutter = *CrackCutter::Create(&m, 1, kLoose, {.min_temporary_height = guard});
     ASSERT_TRUE(cutter.ApplyPose({0, {0.3, 0.002, -1}, {0.3, 0.002, -2}}).ok());
     ASSERT_TRUE(cutter.ApplyPose({0.1, {0.3, 0.002, 0.3}, {0.3, 0.002, -0.7}}).ok());

@@ -15,6 +15,7 @@
 #include "mesh/mesh_quality.h"
 #include "mesh/mesh_validation.h"
 #include "support/shared_meshes.h"
+#include "support/unit_tet.h"
 
 namespace kerf::cut {
 namespace {
@@ -33,13 +34,8 @@ BladeLimits LimitsFor(const TetMesh& m) {
 }
 
 TEST(CrackCutter, ABladeThroughOneTetPartsIt) {
-  TetMesh m;
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
-                                   Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1)}) {
-    m.AddVertex(p);
-  }
-  ASSERT_TRUE(
-      m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)}).ok());
+  TetMesh m = kerf::testing::UnitTet();
+  ASSERT_EQ(m.tet_count(), 1u);
   CrackCutter cutter =
       *CrackCutter::Create(&m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100});
   // A blade along y through x = 0.3 sweeps from below the tet to above it.
