@@ -201,7 +201,8 @@ class CrackCutter {
   mesh::VertexId EdgePointVertex(mesh::VertexId a, mesh::VertexId b);
   mesh::VertexId FacePointVertex(const FaceKey& key);
   // New points (and temporary ones moved) take their positions, and the state the simulation
-  // gives them, from `origins` as the unit being split places them (Placed).
+  // gives them, from `weights` on `origins` as their own side's tets name them (PlaceOnItsSide;
+  // a new point once parting is done).
   mesh::VertexId TemporaryVertex(std::uint64_t place, const std::array<mesh::VertexId, 4>& origins,
                                  const Eigen::Vector4d& weights);
   // The apex of a cone for good: the middle of the crack's trace points pulled inside, or the
@@ -214,8 +215,6 @@ class CrackCutter {
   // them (a chip the crack cut off) keeps its displacement.
   void PlaceOnItsSide(mesh::VertexId v, const std::array<mesh::VertexId, 4>& origins,
                       const Eigen::Vector4d& weights);
-  // `from` (origins) as the ids of the unit being split (placing_ids_).
-  std::array<mesh::VertexId, 4> Placed(std::array<mesh::VertexId, 4> from) const;
   // `origins` as the tets around `v` name them; none if they lack one `weights` uses.
   std::optional<std::array<mesh::VertexId, 4>> PlacedAround(mesh::VertexId v,
                                                             std::array<mesh::VertexId, 4> origins,
@@ -273,8 +272,6 @@ class CrackCutter {
   };
   absl::flat_hash_map<mesh::VertexId, PointRecipe> recipe_;
   std::vector<mesh::VertexId> new_points_;  // made since the last parting
-  // The unit being split: its corners (origins) and their placed ids.
-  mesh::TetVertices placing_origins_{}, placing_ids_{};
   CutStatistics statistics_;
   PoseSummary last_pose_;
 };

@@ -70,8 +70,6 @@ bool CrackCutter::SamePieces(const std::vector<TetId>& pieces,
 
 std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
   const mesh::TetVertices corners = CornersOf(unit);
-  placing_origins_ = corners;
-  placing_ids_ = PlacedCorners(unit);
   if (blade != nullptr) {
     const int table_case = TableCase(corners, *blade);
     ++statistics_.poses_by_case[table_case];
@@ -241,14 +239,6 @@ Eigen::Vector4d CrackCutter::ApexWeights(const TetCrack& crack) const {
   return PulledInside({1 - w.sum(), w.x(), w.y(), w.z()});
 }
 
-std::array<VertexId, 4> CrackCutter::Placed(std::array<VertexId, 4> from) const {
-  for (VertexId& v : from) {
-    const auto at = std::find(placing_origins_.begin(), placing_origins_.end(), v);
-    if (at != placing_origins_.end()) v = placing_ids_[at - placing_origins_.begin()];
-  }
-  return from;
-}
-
 std::optional<std::array<VertexId, 4>> CrackCutter::PlacedAround(
     VertexId v, std::array<VertexId, 4> origins, const Eigen::Vector4d& weights) const {
   std::array<bool, 4> found{};
@@ -280,15 +270,15 @@ void CrackCutter::PlaceOnItsSide(VertexId v, const std::array<VertexId, 4>& orig
 
 VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& origins,
                                  const Eigen::Vector4d& weights) {
-  const std::array<VertexId, 4> from = Placed(origins);
+  // Placed on the origins for now: once parting is done, Repart places it on its own side.
   Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
   for (int k = 0; k < 4; ++k) {
     if (weights[k] == 0) continue;
-    rest += weights[k] * mesh_->rest_position(from[k]);
-    current += weights[k] * mesh_->current_position(from[k]);
+    rest += weights[k] * mesh_->rest_position(origins[k]);
+    current += weights[k] * mesh_->current_position(origins[k]);
   }
   const VertexId v = mesh_->AddVertex(rest, current);
-  made_vertices_.push_back({v, from, weights});
+  made_vertices_.push_back({v, origins, weights});
   recipe_[v] = {origins, weights};
   new_points_.push_back(v);
   return v;
