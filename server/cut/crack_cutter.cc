@@ -242,7 +242,30 @@ void CrackCutter::Finish() {
     SplitUnits(std::move(touched), {});
   }
   SplitReadyGroups(nullptr);  // progressive: every group closes
+  OpenShutCrackFaces();
   previous_.reset();
+}
+
+void CrackCutter::OpenShutCrackFaces() {
+  std::vector<FaceKey> shut;
+  for (const auto& [key, marks] : crack_) {
+    if (!face_points_.contains(key) &&
+        std::none_of(key.begin(), key.end(), [&](VertexId v) { return parting_.HasCopies(v); })) {
+      shut.push_back(key);
+    }
+  }
+  std::sort(shut.begin(), shut.end());  // the same points whatever the map's order
+  std::vector<TetId> touched;
+  for (const FaceKey& key : shut) {
+    const std::vector<TetId> units = UnitsAround({key[0], key[1], key[2]});
+    if (units.size() < 2) continue;  // on the tissue's boundary
+    face_points_[key] = {Eigen::Vector3d::Constant(1.0 / 3)};
+    touched.insert(touched.end(), units.begin(), units.end());
+  }
+  if (touched.empty()) return;
+  Join(touched);
+  if (mode_ == CutMode::kProgressive) SplitUnits(touched, {});
+  SplitReadyGroups(nullptr);
 }
 
 void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* touched) {

@@ -240,6 +240,10 @@ class CrackCutter {
   void CloseUnitsTheBladeLeft();
   // Their pieces become units of their own.
   void CloseUnits(const std::vector<mesh::TetId>& units);
+  // Once the blade is withdrawn: a crack face inside the tissue none of whose corners the crack
+  // parts (its corners all lie on the crack's front, where the front turns) cannot open; a point
+  // in its middle, on the crack and parted, opens it.
+  void OpenShutCrackFaces();
 
   mesh::TetMesh* mesh_;
   BladeCrossings crossings_;

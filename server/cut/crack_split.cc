@@ -197,6 +197,17 @@ std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
     }
     return std::nullopt;
   }
+  if (cuts.empty() && face_points.size() == 1 && !inner) {
+    // A lone point inside a face, the crack in that face only: a fan from the opposite corner.
+    const int k = face_points[0].face;
+    split.kind = CrackSplitKind::kMinimal;
+    split.cut_case = CutCase::kFaceFan;
+    for (const auto& t : crack.faces[k].triangles) {
+      split.tets.push_back({crack.corners[k], t[0], t[1], t[2]});
+    }
+    AddWholeFaceCracks(crack, &split);
+    return split;
+  }
   if (corner_traces || !inner) return std::nullopt;
   TetSplit minimal;
   if (face_points.empty()) {

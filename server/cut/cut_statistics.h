@@ -18,7 +18,7 @@ inline constexpr int kProgressiveCases = 11;
 struct CutStatistics {
   std::size_t cut_tets = 0;                   // original tets standing in 2 or more pieces now
   std::size_t new_tets = 0;                   // those pieces
-  std::array<std::size_t, 8> tets_by_case{};  // splits for good by CutCase (index = enum value)
+  std::array<std::size_t, 9> tets_by_case{};  // splits for good by CutCase (index = enum value)
   std::size_t snapped_vertices = 0;           // vertices put on the crack by snapping
   std::size_t parted_vertices = 0;            // copies made where the crack parts a vertex
   // Progressive cutting, summed over poses.

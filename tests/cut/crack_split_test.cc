@@ -8,6 +8,7 @@
 #include <set>
 
 #include "geometry/tet_measures.h"
+#include "mesh/tet_mesh.h"
 
 namespace kerf::cut {
 namespace {
@@ -267,6 +268,24 @@ TEST(CrackSplit, NoPointsLeavesTheTetWholeAndAFaceOnTheCrackIsACrackFace) {
   ASSERT_TRUE(split);
   EXPECT_EQ(split->kind, CrackSplitKind::kWhole);
   EXPECT_EQ(split->crack_faces.size(), 1u);
+}
+
+// A point in a face on the crack, nothing else (a crack face opened where the crack's front
+// turns): a fan of three from the opposite corner, the face's three triangles on the crack.
+TEST(CrackSplit, ALonePointInAFaceOnTheCrackIsAFanOfThree) {
+  OneTet tet;
+  for (const int i : {1, 2, 3}) tet.CornerOnCrack(i);
+  tet.PointInFace(0, {1.0 / 3, 1.0 / 3, 1.0 / 3});  // face 123
+  const TetCrack crack = tet.Crack();
+  EXPECT_FALSE(HasInnerCrack(crack));
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->cut_case, CutCase::kFaceFan);
+  EXPECT_EQ(split->tets.size(), 3u);
+  EXPECT_EQ(split->crack_faces.size(), 3u);
+  for (const mesh::TetVertices& t : split->tets) EXPECT_TRUE(mesh::TetHasVertex(t, VertexId(0)));
+  ExpectTiles(tet, crack, *split);
 }
 
 // Three corners on the crack (their face lies on it) and the two edges from two of them to the
