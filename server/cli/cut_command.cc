@@ -296,6 +296,8 @@ absl::StatusOr<kerf::v1::CutReport> CutWith(cut::CrackCutter* cutter, mesh::TetM
     report.set_swept_samples(static_cast<std::uint32_t>(f.samples));
     report.set_crossed_tets(static_cast<std::uint32_t>(fidelity->crossed_tets()));
     report.set_coverage(f.coverage);
+    report.set_surface_samples(static_cast<std::uint32_t>(f.surface_samples));
+    report.set_coverage_below_surface(f.coverage_below_surface);
     report.set_crack_faces(static_cast<std::uint32_t>(f.crack_faces));
     report.set_unpaired_crack_faces(static_cast<std::uint32_t>(f.unpaired_faces));
     report.set_overcut_faces(static_cast<std::uint32_t>(f.overcut_faces));
@@ -408,8 +410,9 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
       report->new_tets(), " (", report->new_per_cut(), " per cut tet); ", report->tets_after(),
       " tets, ", report->components(), " component(s), ", report->valid() ? "valid" : "INVALID",
       report->fidelity_measured()
-          ? absl::StrCat("; coverage ", report->coverage(), ", ", report->overcut_faces(),
-                         " overcut and ", report->unpaired_crack_faces(), " unpaired crack faces")
+          ? absl::StrCat("; coverage ", report->coverage(), " (", report->coverage_below_surface(),
+                         " below the surface), ", report->overcut_faces(), " overcut and ",
+                         report->unpaired_crack_faces(), " unpaired crack faces")
           : "",
       options.check == CheckWhen::kEveryPose
           ? absl::StrCat("; ", report->poses_not_covered(), " poses not covered at once")

@@ -32,7 +32,8 @@ constexpr lab::PathFamily kFamilies[] = {lab::PathFamily::kHand, lab::PathFamily
 struct Row {
   std::string mesh, family, cutting;
   int paths = 0;
-  double min_coverage = 1, coverage = 0, min_dihedral = 180, seconds = 0;
+  double min_coverage = 1, coverage = 0, min_below = 1, below = 0, min_dihedral = 180, seconds = 0;
+  std::size_t samples = 0, surface_samples = 0;
   std::size_t made = 0;  // tets the cut made, alive at the end
   std::size_t poses = 0, lagging = 0, overcut = 0, unpaired = 0, cut_tets = 0, new_tets = 0,
               slivers = 0, under_one = 0, invalid = 0;
@@ -42,6 +43,10 @@ void Add(const kerf::v1::CutReport& r, Row* row) {
   ++row->paths;
   row->min_coverage = std::min(row->min_coverage, r.coverage());
   row->coverage += r.coverage();
+  row->min_below = std::min(row->min_below, r.coverage_below_surface());
+  row->below += r.coverage_below_surface();
+  row->samples += r.swept_samples();
+  row->surface_samples += r.surface_samples();
   if (r.new_tets() > 0) row->min_dihedral = std::min(row->min_dihedral, r.min_dihedral_deg());
   row->seconds += r.cut_seconds();
   row->poses += r.poses();
@@ -122,15 +127,18 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
   std::string out = absl::StrCat(
       "hand-cuts: ", seeds, " seeds per family, check ",
       check == CheckWhen::kEveryPose ? "every pose" : "at the end",
-      "\n\n| mesh | family | mode | coverage min / mean | overcut faces | unpaired | "
-      "new per cut | min dihedral (deg) | new tets under 5 deg | under 1 deg | poses lagging | "
-      "invalid | us per pose |\n"
-      "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "\n\n| mesh | family | mode | coverage min / mean | at the surface | below it min / mean | "
+      "overcut faces | unpaired | new per cut | min dihedral (deg) | new tets under 5 deg | "
+      "under 1 deg | poses lagging | invalid | us per pose |\n"
+      "|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     absl::StrAppendFormat(
         &out,
-        "| %s | %s | %s | %.3f / %.3f | %u | %u | %.2f | %s | %u of %u | %u | %s | %u | %.1f |\n",
-        r.mesh, r.family, r.cutting, r.min_coverage, r.coverage / r.paths, r.overcut, r.unpaired,
+        "| %s | %s | %s | %.3f / %.3f | %.1f%% | %.3f / %.3f | %u | %u | %.2f | %s | %u of %u | "
+        "%u | %s | %u | %.1f |\n",
+        r.mesh, r.family, r.cutting, r.min_coverage, r.coverage / r.paths,
+        100.0 * r.surface_samples / std::max<std::size_t>(r.samples, 1), r.min_below,
+        r.below / r.paths, r.overcut, r.unpaired,
         r.cut_tets ? static_cast<double>(r.new_tets) / r.cut_tets : 0.0,
         r.new_tets > 0 ? absl::StrFormat("%.2f", r.min_dihedral) : std::string("-"), r.slivers,
         r.made, r.under_one,

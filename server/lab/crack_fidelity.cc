@@ -146,9 +146,22 @@ void FidelityMeter::AddTriangle(const std::array<Eigen::Vector3d, 3>& t, std::ui
     const double edge = tet_edge_[tet];
     const int n = std::max(1, static_cast<int>(std::ceil(options_.step_samples_per_square_edge *
                                                          area / (edge * edge))));
-    for (int s = 0; s < n; ++s) step_samples_.push_back({PointOn(piece, random), edge, tet});
+    for (int s = 0; s < n; ++s) step_samples_.push_back(MakeSample(PointOn(piece, random), tet));
     pieces_.push_back({tet, std::move(piece), area});
   }
+}
+
+FidelityMeter::Sample FidelityMeter::MakeSample(const Eigen::Vector3d& p, std::uint32_t tet) const {
+  const double edge = tet_edge_[tet], radius = options_.tolerance * edge;
+  bool at_surface = false;
+  for (const std::uint32_t i : boundary_index_.Near(p, radius)) {
+    const std::array<Eigen::Vector3d, 3>& b = boundary_[i];
+    if (geometry::DistanceToTriangle(p, b[0], b[1], b[2]) <= radius) {
+      at_surface = true;
+      break;
+    }
+  }
+  return {p, edge, tet, at_surface};
 }
 
 bool FidelityMeter::OnBoundary(const std::vector<Eigen::Vector3d>& piece, std::uint32_t tet) const {
@@ -191,7 +204,7 @@ const std::vector<FidelityMeter::Sample>& FidelityMeter::Samples() const {
           std::lower_bound(cumulative.begin(), cumulative.end(), unit(random) * area) -
               cumulative.begin(),
           pieces.size() - 1);
-      samples_.push_back({PointOn(pieces[k]->polygon, random), edge, tet});
+      samples_.push_back(MakeSample(PointOn(pieces[k]->polygon, random), tet));
     }
   }
   return samples_;
@@ -248,8 +261,17 @@ Fidelity FidelityMeter::Measure(const CrackFaces& crack) const {
   Fidelity f;
   const std::vector<Sample>& samples = Samples();
   f.samples = samples.size();
-  for (const Sample& s : samples) f.covered += Covered(crack, s) ? 1 : 0;
+  std::size_t covered_below = 0;
+  for (const Sample& s : samples) {
+    const bool covered = Covered(crack, s);
+    f.covered += covered ? 1 : 0;
+    f.surface_samples += s.at_surface ? 1 : 0;
+    covered_below += covered && !s.at_surface ? 1 : 0;
+  }
   f.coverage = f.samples ? static_cast<double>(f.covered) / static_cast<double>(f.samples) : 1;
+  const std::size_t below = f.samples - f.surface_samples;
+  f.coverage_below_surface =
+      below ? static_cast<double>(covered_below) / static_cast<double>(below) : 1;
   f.crack_faces = crack.size();
   f.unpaired_faces = crack.unpaired();
   for (const std::array<Eigen::Vector3d, 3>& t : crack.triangles()) {

@@ -13,7 +13,12 @@
 //            swept surface;
 //   unpaired: the crack faces with no face of the other lip at the same rest positions (the two
 //             lips triangulated differently, or a gap);
-//   step coverage (point-wise lag): the share of one step's own samples covered now.
+//   step coverage (point-wise lag): the share of one step's own samples covered now;
+//   coverage below the surface: coverage of the samples farther than `tolerance` l from the
+//            tissue's boundary. Nearer, the blade grazed the surface: a cut there would shave
+//            a skin thinner than the tolerance, which snapping puts on the surface (a mesh of
+//            edge l holds no thinner skin without slivers), and the meter could not tell it
+//            from the surface itself at its tolerance. Both are reported.
 #pragma once
 
 #include <Eigen/Core>
@@ -61,6 +66,9 @@ struct Fidelity {
   std::size_t samples = 0;
   std::size_t covered = 0;
   double coverage = 1;  // covered / samples (1 when nothing was swept inside)
+  // Samples within `tolerance` l of the tissue's boundary, and the coverage of the others.
+  std::size_t surface_samples = 0;
+  double coverage_below_surface = 1;
   std::size_t crack_faces = 0;
   std::size_t unpaired_faces = 0;
   std::size_t overcut_faces = 0;
@@ -102,6 +110,7 @@ class FidelityMeter {
     Eigen::Vector3d point;
     double edge;  // the local edge length, m
     std::uint32_t tet;
+    bool at_surface;  // within the tolerance of the tissue's boundary
   };
   // A step's triangle clipped to one tet of the tissue: a convex polygon.
   struct Piece {
@@ -117,6 +126,7 @@ class FidelityMeter {
   const std::vector<Sample>& Samples() const;
   // Whether a piece in `tet` lies in one of its faces on the tissue's boundary.
   bool OnBoundary(const std::vector<Eigen::Vector3d>& piece, std::uint32_t tet) const;
+  Sample MakeSample(const Eigen::Vector3d& p, std::uint32_t tet) const;
   bool Covered(const CrackFaces& crack, const Sample& s) const;
 
   FidelityOptions options_;

@@ -108,6 +108,19 @@ TEST(FidelityMeter, ACrackWithinAQuarterEdgeCovers) {
   EXPECT_EQ(f.overcut_faces, 0u);
 }
 
+// The samples within a quarter edge (0.315) of the tissue's boundary are counted apart: across
+// the 2 x 2 section that band is 1 - (2 - 0.63)^2 / 4 = 0.53 of the sweep.
+TEST(FidelityMeter, SamplesNearTheSurfaceAreCountedApart) {
+  const FidelityMeter meter = MeterFor(SweepAt(2, 12));
+  const Fidelity uncut = meter.Measure(meter.FindCrack(Tissue()));
+  EXPECT_NEAR(static_cast<double>(uncut.surface_samples) / static_cast<double>(uncut.samples), 0.53,
+              0.08);
+  EXPECT_EQ(uncut.coverage_below_surface, 0);
+  const Fidelity cut = meter.Measure(meter.FindCrack(PartedAt(2)));
+  EXPECT_EQ(cut.surface_samples, uncut.surface_samples);
+  EXPECT_EQ(cut.coverage_below_surface, 1);
+}
+
 TEST(FidelityMeter, AHalfCrackCoversAboutHalf) {
   const FidelityMeter meter = MeterFor(SweepAt(2, 12));
   const Fidelity f = meter.Measure(meter.FindCrack(PartedAt(2, /*whole=*/false)));
