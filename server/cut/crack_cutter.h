@@ -257,6 +257,7 @@ class CrackCutter {
   absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;  // by origins
   absl::flat_hash_set<mesh::VertexId> on_crack_;                      // origins
   absl::flat_hash_map<FaceKey, int, FaceKeyHash> crack_;  // by origins, with how many mark it
+  absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;
   std::vector<mesh::TetId> blade_units_;  // the units the blade was in at the last pose
   absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;  // temporary piece -> its open tet

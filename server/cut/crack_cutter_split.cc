@@ -308,6 +308,7 @@ std::vector<TetId> CrackCutter::Replace(TetId unit, const std::vector<mesh::TetV
     KERF_CHECK(added.ok());
     source_tet_[*added] = source;
     made.push_back(*added);
+    fresh_.insert(*added);
   }
   return made;
 }
@@ -330,8 +331,10 @@ void CrackCutter::RemoveCrack(const FaceKey& key) {
 }
 
 void CrackCutter::Repart(const std::vector<VertexId>& origins) {
-  const PartingChanges changes =
-      parting_.Repart(mesh_, origins, [&](const FaceKey& key) { return crack_.contains(key); });
+  const PartingChanges changes = parting_.Repart(
+      mesh_, origins, [&](const FaceKey& key) { return crack_.contains(key); },
+      [&](TetId t) { return fresh_.contains(t); });
+  fresh_.clear();
   for (const auto& [old_tet, new_tet] : changes.replaced) {
     source_tet_[new_tet] = SourceTet(old_tet);  // a tet renamed by parting keeps its source
     source_tet_.erase(old_tet);

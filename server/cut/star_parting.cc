@@ -39,8 +39,11 @@ std::vector<TetId> VertexParting::TetsAround(const mesh::TetMesh& mesh, VertexId
 }
 
 PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<VertexId>& origins,
-                                     const std::function<bool(const FaceKey&)>& on_crack) {
+                                     const std::function<bool(const FaceKey&)>& on_crack,
+                                     const std::function<bool(TetId)>& fresh) {
   PartingChanges changes;
+  absl::flat_hash_set<TetId> renamed_fresh;  // fresh tets rewritten for an earlier origin
+  const auto is_fresh = [&](TetId t) { return (fresh && fresh(t)) || renamed_fresh.contains(t); };
   std::vector<VertexId> todo;
   for (const VertexId v : origins) todo.push_back(Origin(v));
   std::sort(todo.begin(), todo.end());
@@ -85,7 +88,12 @@ PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<Vert
     absl::flat_hash_set<VertexId> taken;
     for (std::size_t p = 0; p < parts.size(); ++p) {
       absl::flat_hash_map<VertexId, int> uses;
-      for (const int i : parts[p]) ++uses[id_in(i)];
+      for (const int i : parts[p]) {
+        if (!is_fresh(star[i])) ++uses[id_in(i)];
+      }
+      if (uses.empty()) {
+        for (const int i : parts[p]) ++uses[id_in(i)];
+      }
       int most = 0, most_free = 0;
       for (const auto& [id, n] : uses) {
         if (n > most || (n == most && id < had[p])) most = n, had[p] = id;
@@ -130,6 +138,7 @@ PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<Vert
         KERF_CHECK(mesh->RemoveTet(star[i]).ok());
         const absl::StatusOr<TetId> added = mesh->AddTet(corners);
         KERF_CHECK(added.ok());
+        if (is_fresh(star[i])) renamed_fresh.insert(*added);
         changes.replaced.push_back({star[i], *added});
       }
     }

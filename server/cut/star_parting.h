@@ -61,9 +61,12 @@ class VertexParting {
   }
 
   // Parts each of `origins` (or the origins of copies given) by the crack (`on_crack` of a face's
-  // origin key), rewriting the tets whose id for it changes. O(stars).
+  // origin key), rewriting the tets whose id for it changes. `fresh` (if given) names tets just
+  // made from origins: the id they use tells nothing of their side, so a part chooses its id, and
+  // the place a new copy starts from, by its other tets where it has any. O(stars).
   PartingChanges Repart(mesh::TetMesh* mesh, const std::vector<mesh::VertexId>& origins,
-                        const std::function<bool(const FaceKey&)>& on_crack);
+                        const std::function<bool(const FaceKey&)>& on_crack,
+                        const std::function<bool(mesh::TetId)>& fresh = nullptr);
   // Removes the origin and its copies if no tet uses them; false if a tet does.
   bool RemoveIfUnused(mesh::TetMesh* mesh, mesh::VertexId origin);
 

@@ -69,7 +69,10 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   sub_steps.clear();
 
   kerf::v1::LiveCutRow row;
+  // The energy the settled body holds, and what it may gain: the rise of the total energy (the
+  // work of gravity and loads counted), measured against it.
   const double start_energy = sim.MechanicalEnergy();
+  const double start_total = sim.TotalEnergy();
   const double start_time = time;
   const double duration = path.back().time * options.slow_down;
   const double pose_period = 1 / options.pose_rate_hz;
@@ -82,7 +85,7 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
     if (absl::Status s = sim.ApplyBladePose(pose); !s.ok()) return s;
     step_to(start_time + elapsed + pose_period);
     row.set_poses(n + 1);
-    const double ratio = sim.MechanicalEnergy() / start_energy;
+    const double ratio = (start_energy + sim.TotalEnergy() - start_total) / start_energy;
     largest_speed = std::max(largest_speed, LargestSpeed(sim.state()));
     largest_ratio = std::isfinite(ratio) ? std::max(largest_ratio, ratio) : ratio;
     if (!std::isfinite(ratio) || ratio > options.blow_up_energy_ratio) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
+#include "fem/boundary_conditions.h"
 #include "fem/explicit_integrator.h"
 #include "fem/implicit_integrator.h"
 #include "fem/static_solver.h"
@@ -139,6 +140,16 @@ void Simulation::UpdateCurrentPositions() {
   std::span<Eigen::Vector3d> current = scene_.mesh.mutable_current_positions();
   const std::span<const Eigen::Vector3d> rest = scene_.mesh.rest_positions();
   for (std::size_t i = 0; i < current.size(); ++i) current[i] = rest[i] + state_.displacement[i];
+}
+
+double Simulation::TotalEnergy() const {
+  const std::vector<Eigen::Vector3d> forces =
+      fem::ExternalForces(scene_.conditions, model_->masses());
+  double potential = 0;
+  for (std::size_t i = 0; i < forces.size() && i < state_.displacement.size(); ++i) {
+    potential -= forces[i].dot(state_.displacement[i]);
+  }
+  return MechanicalEnergy() + potential;
 }
 
 }  // namespace kerf::sim

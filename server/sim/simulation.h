@@ -60,6 +60,11 @@ class Simulation {
   double MechanicalEnergy() const {
     return fem::MechanicalEnergy(*model_, state_, elastic_forces());
   }
+  // The mechanical energy plus the potential of the constant external forces (gravity and
+  // loads), -sum f . u (J): with damping it can only fall, so a rise is the integration's or
+  // the cut's doing, while a piece cut free and falling turns potential into kinetic energy
+  // without raising it. O(vertices).
+  double TotalEnergy() const;
   // The vertices that sleep (a scene with integration.sleeping), or null.
   const fem::SleepingVertices* sleeping() const {
     return integrator_ != nullptr ? integrator_->sleeping() : nullptr;

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 
+#include "absl/container/flat_hash_set.h"
 #include "mesh/box_lattice.h"
 #include "mesh/connected_components.h"
 #include "mesh/mesh_validation.h"
@@ -152,6 +154,80 @@ TEST(StarParting, APartKeepsItsVertexWhenAnotherOutgrowsIt) {
   std::sort(before.begin(), before.end());
   std::sort(after.begin(), after.end());
   EXPECT_EQ(after, before);
+}
+
+// An opened crack, then the tets of the half that holds copies made again by origins (as a split
+// makes pieces): named "fresh", they tell nothing of their side, so that half keeps its copies
+// and no vertex moves.
+TEST(StarParting, TetsMadeByOriginsKeepTheirSidesCopies) {
+  {
+    // Two cubes side by side, the crack the square between them (x = 1).
+    TetMesh m = *mesh::MakeBoxLattice({.cells_x = 2, .size = Eigen::Vector3d(2, 1, 1)});
+    CrackFaceSet crack;
+    for (const mesh::TetId t : m.tets()) {
+      const mesh::TetVertices& v = m.tet(t);
+      for (const auto& f : mesh::kTetFaces) {
+        const FaceKey key = MakeFaceKey(v[f[0]], v[f[1]], v[f[2]]);
+        if (std::all_of(key.begin(), key.end(),
+                        [&](VertexId u) { return m.rest_position(u).x() == 1; })) {
+          crack.insert(key);
+        }
+      }
+    }
+    ASSERT_EQ(crack.size(), 2u);
+    VertexParting parting;
+    PartBy(&parting, &m, crack);
+    // Open it: the half x > 1 moves by +0.1 in x, the other by -0.1.
+    for (const mesh::TetId t : m.tets()) {
+      Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+      for (const VertexId v : m.tet(t)) middle += 0.25 * m.rest_position(v);
+      for (const VertexId v : m.tet(t)) {
+        const Eigen::Vector3d x =
+            m.rest_position(v) + Eigen::Vector3d(middle.x() > 1 ? 0.1 : -0.1, 0, 0);
+        ASSERT_TRUE(m.MoveVertex(v, m.rest_position(v), x).ok());
+      }
+    }
+    const auto places = [&] {
+      std::vector<std::array<double, 6>> corners;
+      for (const mesh::TetId t : m.tets()) {
+        for (const VertexId v : m.tet(t)) {
+          const Eigen::Vector3d& r = m.rest_position(v);
+          const Eigen::Vector3d& x = m.current_position(v);
+          corners.push_back({r.x(), r.y(), r.z(), x.x(), x.y(), x.z()});
+        }
+      }
+      std::sort(corners.begin(), corners.end());
+      return corners;
+    };
+    const auto before = places();
+    // The tets using copies made again by origins, but one for each copy (a side whose tets
+    // were all made again has nothing left to tell its copies by).
+    absl::flat_hash_set<mesh::TetId> fresh;
+    absl::flat_hash_set<VertexId> kept;
+    std::vector<mesh::TetId> tets(m.tets().begin(), m.tets().end());
+    for (const mesh::TetId t : tets) {
+      mesh::TetVertices v = m.tet(t);
+      const bool keeps = std::any_of(v.begin(), v.end(), [&](VertexId u) {
+        return parting.Origin(u) != u && !kept.contains(u);
+      });
+      if (keeps) {
+        kept.insert(v.begin(), v.end());
+        continue;
+      }
+      if (std::all_of(v.begin(), v.end(), [&](VertexId u) { return parting.Origin(u) == u; })) {
+        continue;
+      }
+      for (VertexId& u : v) u = parting.Origin(u);
+      ASSERT_TRUE(m.RemoveTet(t).ok());
+      fresh.insert(*m.AddTet(v));
+    }
+    ASSERT_GE(fresh.size(), 1u);
+    parting.Repart(
+        &m, All(m), [&](const FaceKey& key) { return crack.contains(key); },
+        [&](mesh::TetId t) { return fresh.contains(t); });
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_EQ(places(), before);
+  }
 }
 
 }  // namespace
