@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <optional>
 
 #include "absl/container/flat_hash_set.h"
@@ -40,6 +41,20 @@ std::vector<VertexId> All(const TetMesh& m) { return {m.vertices().begin(), m.ve
 
 PartingChanges PartBy(VertexParting* parting, TetMesh* m, const CrackFaceSet& crack) {
   return parting->Repart(m, All(*m), [&](const FaceKey& key) { return crack.contains(key); });
+}
+
+// Moves each tet's vertices (current positions) by +0.1 in x if its middle (rest) is `beyond`,
+// else by -0.1: the two sides of a parted crack apart.
+void OpenApart(TetMesh* m, const std::function<bool(const Eigen::Vector3d&)>& beyond) {
+  for (const mesh::TetId t : m->tets()) {
+    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+    for (const VertexId v : m->tet(t)) middle += 0.25 * m->rest_position(v);
+    for (const VertexId v : m->tet(t)) {
+      const Eigen::Vector3d x =
+          m->rest_position(v) + Eigen::Vector3d(beyond(middle) ? 0.1 : -0.1, 0, 0);
+      ASSERT_TRUE(m->MoveVertex(v, m->rest_position(v), x).ok());
+    }
+  }
 }
 
 TEST(StarParting, NoCrackPartsNothing) {
@@ -115,15 +130,7 @@ TEST(StarParting, APartKeepsItsVertexWhenAnotherOutgrowsIt) {
   VertexParting parting;
   PartBy(&parting, &m, crack);
   // Open the crack: the half x > y moves by +0.1 in x, the other by -0.1.
-  for (const mesh::TetId t : m.tets()) {
-    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-    for (const VertexId v : m.tet(t)) middle += 0.25 * m.rest_position(v);
-    for (const VertexId v : m.tet(t)) {
-      const Eigen::Vector3d x =
-          m.rest_position(v) + Eigen::Vector3d(middle.x() > middle.y() ? 0.1 : -0.1, 0, 0);
-      ASSERT_TRUE(m.MoveVertex(v, m.rest_position(v), x).ok());
-    }
-  }
+  OpenApart(&m, [](const Eigen::Vector3d& middle) { return middle.x() > middle.y(); });
   const auto shape = [&](mesh::TetId t) {
     std::vector<std::pair<std::array<double, 3>, std::array<double, 3>>> corners;
     for (const VertexId v : m.tet(t)) {
@@ -178,15 +185,7 @@ TEST(StarParting, TetsMadeByOriginsKeepTheirSidesCopies) {
     VertexParting parting;
     PartBy(&parting, &m, crack);
     // Open it: the half x > 1 moves by +0.1 in x, the other by -0.1.
-    for (const mesh::TetId t : m.tets()) {
-      Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-      for (const VertexId v : m.tet(t)) middle += 0.25 * m.rest_position(v);
-      for (const VertexId v : m.tet(t)) {
-        const Eigen::Vector3d x =
-            m.rest_position(v) + Eigen::Vector3d(middle.x() > 1 ? 0.1 : -0.1, 0, 0);
-        ASSERT_TRUE(m.MoveVertex(v, m.rest_position(v), x).ok());
-      }
-    }
+    OpenApart(&m, [](const Eigen::Vector3d& middle) { return middle.x() > 1; });
     const auto places = [&] {
       std::vector<std::array<double, 6>> corners;
       for (const mesh::TetId t : m.tets()) {
