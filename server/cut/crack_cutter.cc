@@ -101,17 +101,21 @@ mesh::TetVertices CrackCutter::CornersOf(TetId unit) const {
 mesh::TetVertices CrackCutter::PlacedCorners(TetId unit) const {
   const auto open = open_.find(unit);
   if (open == open_.end()) return mesh_->tet(unit);
-  const mesh::TetVertices& corners = open->second.corners;
-  mesh::TetVertices placed = corners;
   std::array<bool, 4> found{};
-  for (const TetId p : open->second.pieces) {
-    for (const VertexId v : mesh_->tet(p)) {
+  return NamedIn(open->second.pieces, open->second.corners, &found);
+}
+
+std::array<VertexId, 4> CrackCutter::NamedIn(std::span<const TetId> tets,
+                                             std::array<VertexId, 4> origins,
+                                             std::array<bool, 4>* found) const {
+  for (const TetId t : tets) {
+    for (const VertexId v : mesh_->tet(t)) {
       for (int k = 0; k < 4; ++k) {
-        if (!found[k] && corners[k] == parting_.Origin(v)) placed[k] = v, found[k] = true;
+        if (!(*found)[k] && origins[k] == parting_.Origin(v)) origins[k] = v, (*found)[k] = true;
       }
     }
   }
-  return placed;
+  return origins;
 }
 
 std::vector<mesh::TetVertices> CrackCutter::PlacedCornersOfAll(

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
@@ -216,9 +217,14 @@ class CrackCutter {
   void PlaceOnItsSide(mesh::VertexId v, const std::array<mesh::VertexId, 4>& origins,
                       const Eigen::Vector4d& weights);
   // `origins` as the tets around `v` name them; none if they lack one `weights` uses.
-  std::optional<std::array<mesh::VertexId, 4>> PlacedAround(mesh::VertexId v,
-                                                            std::array<mesh::VertexId, 4> origins,
-                                                            const Eigen::Vector4d& weights) const;
+  std::optional<std::array<mesh::VertexId, 4>> PlacedAround(
+      mesh::VertexId v, const std::array<mesh::VertexId, 4>& origins,
+      const Eigen::Vector4d& weights) const;
+  // `origins` with each not yet `found` replaced by the first id `tets` use for it (a copy or
+  // the origin itself), marking it found.
+  std::array<mesh::VertexId, 4> NamedIn(std::span<const mesh::TetId> tets,
+                                        std::array<mesh::VertexId, 4> origins,
+                                        std::array<bool, 4>* found) const;
   // Puts `pieces` (oriented on rest positions) in place of the unit's tets.
   // Keeps cut_tets and new_tets: the tissue's tets standing in two pieces or more, and those.
   void CountPieces(mesh::TetId source, std::size_t removed, std::size_t added);

@@ -240,19 +240,13 @@ Eigen::Vector4d CrackCutter::ApexWeights(const TetCrack& crack) const {
 }
 
 std::optional<std::array<VertexId, 4>> CrackCutter::PlacedAround(
-    VertexId v, std::array<VertexId, 4> origins, const Eigen::Vector4d& weights) const {
+    VertexId v, const std::array<VertexId, 4>& origins, const Eigen::Vector4d& weights) const {
   std::array<bool, 4> found{};
-  for (const TetId t : mesh_->TetsAround(v)) {
-    for (const VertexId w : mesh_->tet(t)) {
-      for (int k = 0; k < 4; ++k) {
-        if (!found[k] && origins[k] == parting_.Origin(w)) origins[k] = w, found[k] = true;
-      }
-    }
-  }
+  const std::array<VertexId, 4> named = NamedIn(mesh_->TetsAround(v), origins, &found);
   for (int k = 0; k < 4; ++k) {
     if (weights[k] != 0 && !found[k]) return std::nullopt;
   }
-  return origins;
+  return named;
 }
 
 void CrackCutter::PlaceOnItsSide(VertexId v, const std::array<VertexId, 4>& origins,
