@@ -282,9 +282,10 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     int largest = 0, smallest = 0;
     b.maxCoeff(&largest);
     b.minCoeff(&smallest);
-    if (b[largest] > 1 - snap_fraction_) {
+    const double share = SnapShare(c.face);
+    if (b[largest] > 1 - share) {
       Snap(c.face[largest], touched);
-    } else if (b[smallest] < snap_fraction_) {
+    } else if (b[smallest] < share) {
       // Beside the edge opposite the smallest weight: that edge's crossing.
       const int i = (smallest + 1) % 3, j = (smallest + 2) % 3;
       VertexId low = c.face[i], high = c.face[j];
@@ -303,9 +304,10 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
                                      std::vector<TetId>* touched) {
   const EdgeKey key = MakeEdgeKey(low, high);
   if (edge_points_.contains(key)) return;
-  if (fraction < snap_fraction_) {
+  const double share = SnapShare(std::array<VertexId, 2>{low, high});
+  if (fraction < share && (fraction <= 0.5 || share < 0.5)) {
     Snap(low, touched);
-  } else if (fraction > 1 - snap_fraction_) {
+  } else if (fraction > 1 - share) {
     Snap(high, touched);
   } else {
     edge_points_[key] = {fraction};
@@ -334,6 +336,19 @@ void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
       if (distance < within) Snap(v, touched);
     }
   }
+}
+
+double CrackCutter::SnapShare(std::span<const VertexId> corners) const {
+  double sum = 0, scale = 0;
+  int edges = 0;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    scale = std::max(scale, TissueScale(corners[i]));
+    for (std::size_t j = i + 1; j < corners.size(); ++j, ++edges) {
+      sum += (mesh_->rest_position(corners[i]) - mesh_->rest_position(corners[j])).norm();
+    }
+  }
+  const double own = sum / edges;
+  return own > 0 ? snap_fraction_ * std::max(own, scale) / own : snap_fraction_;
 }
 
 void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {

@@ -5,11 +5,14 @@
 // The crack's state is a set of points on the mesh: at most one on each edge (the first
 // crossing of the blade's edge; later ones are the same cut), at most one inside each face (the
 // first crossing of the tip's path: where the crack ends), and the vertices the crack passes
-// through. Snapping is decided once per crossing: one within `snap_fraction` of an edge's length
-// from a corner (of a face's, barycentric, from a corner, or from an edge, where it becomes that
-// edge's point), and a vertex that near the swept surface, is taken at the corner, which is then
-// on the crack. Points are kept as weights until a split uses them. Edges and faces are named by
-// their vertices' origins (cut/star_parting.h), so the two lips of a crack share their points.
+// through. Snapping is decided once per crossing: one within `snap_fraction` of the tissue's edge
+// length there from a corner (of a face's, barycentric, from a corner, or from an edge, where it
+// becomes that edge's point), and a vertex that near the swept surface, is taken at the corner,
+// which is then on the crack. The tissue's edge length is the edge's own for the tissue's edges
+// and that of the tet it was cut from for a piece's edge (SnapShare), so a cut through pieces
+// makes none finer than a cut through tets. Points are kept as weights until a split uses them.
+// Edges and faces are named by their vertices' origins (cut/star_parting.h), so the two lips of a
+// crack share their points.
 //
 // The tets that share points form groups. Progressive (the default): after every pose, each tet
 // with new points, and each the blade is or was in, is split at once from its own corners (an
@@ -179,6 +182,17 @@ class CrackCutter {
   void SnapVerticesNear(const BladePose& from, const BladePose& to,
                         const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
+  // The share of a crossing's edge (or face) within which it snaps to a corner: the snap
+  // fraction of the tissue's edge length there, so a piece's edges snap as far as the edges of
+  // the tet it is part of (cuts through pieces make no smaller pieces than cuts through tets).
+  double SnapShare(std::span<const mesh::VertexId> corners) const;
+  // A made point's PointRecipe::scale (0 for the tissue's own vertices).
+  double TissueScale(mesh::VertexId origin) const {
+    const auto it = recipe_.find(origin);
+    return it == recipe_.end() ? 0 : it->second.scale;
+  }
+  double ScaleOf(const std::array<mesh::VertexId, 4>& origins,
+                 const Eigen::Vector4d& weights) const;
   // The blade's crossings of faces at a pose, by face.
   using BladeFaceCrossings =
       absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>;
@@ -206,9 +220,6 @@ class CrackCutter {
   // a new point once parting is done).
   mesh::VertexId TemporaryVertex(std::uint64_t place, const std::array<mesh::VertexId, 4>& origins,
                                  const Eigen::Vector4d& weights);
-  // The apex of a cone for good: the middle of the crack's trace points pulled inside, or the
-  // tet's middle.
-  Eigen::Vector4d ApexWeights(const TetCrack& crack) const;
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& origins,
                             const Eigen::Vector4d& weights);
   // Moves `v` (a point the cut made, or a copy of one) to `weights` on `origins` as the tets
@@ -276,10 +287,13 @@ class CrackCutter {
   // How many pieces a tissue's tet stands in now, for those ever replaced.
   absl::flat_hash_map<mesh::TetId, std::size_t> pieces_of_source_;
   std::vector<MadeVertex> made_vertices_;
-  // Where each point the cut made lies: weights on origins.
+  // Where each point the cut made lies: weights on origins, and the tissue's edge length there
+  // (the mean edge between its origins, or an origin's own if larger: a piece's edges are shorter
+  // than its tissue's).
   struct PointRecipe {
     std::array<mesh::VertexId, 4> origins;
     Eigen::Vector4d weights;
+    double scale = 0;
   };
   absl::flat_hash_map<mesh::VertexId, PointRecipe> recipe_;
   std::vector<mesh::VertexId> new_points_;  // made since the last parting

@@ -88,9 +88,9 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
     return to_part;
   }
   if (!split) {
-    split =
-        SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners,
-                                           blade != nullptr ? blade->apex : ApexWeights(crack)));
+    split = SplitAsCone(
+        crack, TemporaryVertex(ApexPlace(unit), corners,
+                               blade != nullptr ? blade->apex : ConeApexWeights(crack, rest)));
   }
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
   // between its points and the crack stay open until it moves on.
@@ -216,27 +216,12 @@ VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<Vert
   if (it == temporary_.end() || !mesh_->IsAlive(it->second)) {
     return temporary_[place] = MakeVertex(origins, weights);
   }
-  recipe_[it->second] = {origins, weights};
+  recipe_[it->second] = {origins, weights, ScaleOf(origins, weights)};
   for (const VertexId v : parting_.Ids(it->second)) {
     if (mesh_->IsAlive(v)) PlaceOnItsSide(v, origins, weights);
   }
   ++statistics_.moved;
   return it->second;
-}
-
-Eigen::Vector4d CrackCutter::ApexWeights(const TetCrack& crack) const {
-  if (!HasInnerCrack(crack)) return Eigen::Vector4d::Constant(0.25);
-  const std::vector<VertexId> points = TracePoints(crack);
-  Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-  for (const VertexId v : points) middle += mesh_->rest_position(v);
-  middle /= static_cast<double>(points.size());
-  const mesh::TetVertices& c = crack.corners;
-  Eigen::Matrix3d m;
-  for (int k = 0; k < 3; ++k) {
-    m.col(k) = mesh_->rest_position(c[k + 1]) - mesh_->rest_position(c[0]);
-  }
-  const Eigen::Vector3d w = m.fullPivLu().solve(middle - mesh_->rest_position(c[0]));
-  return PulledInside({1 - w.sum(), w.x(), w.y(), w.z()});
 }
 
 std::optional<std::array<VertexId, 4>> CrackCutter::PlacedAround(
@@ -273,9 +258,28 @@ VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& origins,
   }
   const VertexId v = mesh_->AddVertex(rest, current);
   made_vertices_.push_back({v, origins, weights});
-  recipe_[v] = {origins, weights};
+  recipe_[v] = {origins, weights, ScaleOf(origins, weights)};
   new_points_.push_back(v);
   return v;
+}
+
+double CrackCutter::ScaleOf(const std::array<VertexId, 4>& origins,
+                            const Eigen::Vector4d& weights) const {
+  std::vector<VertexId> used;
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] != 0 && std::find(used.begin(), used.end(), origins[k]) == used.end()) {
+      used.push_back(origins[k]);
+    }
+  }
+  double sum = 0, scale = 0;
+  int edges = 0;
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    scale = std::max(scale, TissueScale(used[i]));
+    for (std::size_t j = i + 1; j < used.size(); ++j, ++edges) {
+      sum += (mesh_->rest_position(used[i]) - mesh_->rest_position(used[j])).norm();
+    }
+  }
+  return edges == 0 ? scale : std::max(scale, sum / edges);
 }
 
 std::vector<TetId> CrackCutter::Replace(TetId unit, const std::vector<mesh::TetVertices>& pieces) {

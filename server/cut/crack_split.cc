@@ -1,10 +1,13 @@
 #include "cut/crack_split.h"
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <algorithm>
 #include <map>
 
 #include "base/check.h"
 #include "cut/tet_split.h"
+#include "geometry/tet_measures.h"
 #include "mesh/tet_mesh.h"
 
 namespace kerf::cut {
@@ -232,6 +235,92 @@ Eigen::Vector4d PulledInside(const Eigen::Vector4d& w) {
     if (w[k] < kApexMargin) pull = std::max(pull, (kApexMargin - w[k]) / (0.25 - w[k]));
   }
   return w + std::min(pull, 1.0) * (Eigen::Vector4d::Constant(0.25) - w);
+}
+
+Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
+                                const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  std::array<Eigen::Vector3d, 4> corner;
+  for (int k = 0; k < 4; ++k) corner[k] = rest(crack.corners[k]);
+  Eigen::Matrix3d frame;
+  for (int k = 0; k < 3; ++k) frame.col(k) = corner[k + 1] - corner[0];
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(frame);
+  const auto weights_of = [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3d w = lu.solve(p - corner[0]);
+    return Eigen::Vector4d(1 - w.sum(), w.x(), w.y(), w.z());
+  };
+  const auto middle_of = [&](const std::vector<VertexId>& points) {
+    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+    for (const VertexId v : points) middle += rest(v);
+    return Eigen::Vector3d(middle / static_cast<double>(points.size()));
+  };
+  const Eigen::Vector3d centre = (corner[0] + corner[1] + corner[2] + corner[3]) / 4;
+  // Where the crack has no inner part the apex may be anywhere inside: candidates run from the
+  // tet's middle towards the middle of its faces' points. Otherwise from the middle of the trace
+  // points towards the tet's middle projected on the plane that fits them (its normal: their
+  // spread's least direction), so the crack's faces stay where the traces are.
+  Eigen::Vector3d from = centre, to = centre;
+  std::optional<Eigen::Vector3d> normal;  // of the crack's plane
+  if (!HasInnerCrack(crack)) {
+    std::vector<VertexId> on_faces;
+    for (const auto& vertices : crack.face_vertices) {
+      for (const VertexId v : vertices) {
+        if (!mesh::TetHasVertex(crack.corners, v) && !Contains(on_faces, v)) on_faces.push_back(v);
+      }
+    }
+    if (!on_faces.empty()) to = middle_of(on_faces);
+  } else {
+    const std::vector<VertexId> points = TracePoints(crack);
+    from = to = middle_of(points);
+    Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+    for (const VertexId v : points) spread += (rest(v) - from) * (rest(v) - from).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
+    if (points.size() >= 3 && eigen.eigenvalues()[1] > 1e-6 * eigen.eigenvalues()[2]) {
+      normal = eigen.eigenvectors().col(0);
+      to = centre - normal->dot(centre - from) * *normal;
+    }
+  }
+  // The candidate whose cone's smallest dihedral angle is largest (the first of equals), among
+  // those pulled inside no farther off the crack's plane than the first.
+  const auto apex_at = [&](const Eigen::Vector4d& w) {
+    Eigen::Vector3d apex = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) apex += w[k] * corner[k];
+    return apex;
+  };
+  const auto off_plane = [&](const Eigen::Vector3d& apex) {
+    return normal ? std::abs(normal->dot(apex - from)) : 0.0;
+  };
+  // A point is pulled inside towards `to` where that keeps the margin (on the crack's plane),
+  // else towards the tet's middle.
+  const Eigen::Vector4d target = weights_of(to);
+  const auto pulled = [&](const Eigen::Vector3d& x) {
+    const Eigen::Vector4d w = weights_of(x);
+    if (target.minCoeff() < kApexMargin) return PulledInside(w);
+    double t = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (w[k] < kApexMargin) t = std::max(t, (kApexMargin - w[k]) / (target[k] - w[k]));
+    }
+    return Eigen::Vector4d(w + t * (target - w));
+  };
+  Eigen::Vector4d best = pulled(from);
+  const double allowed_off = off_plane(apex_at(best)) * (1 + 1e-9) + 1e-12;
+  double best_angle = -1;
+  for (const double s : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    const Eigen::Vector4d w = pulled(from + s * (to - from));
+    const Eigen::Vector3d apex = apex_at(w);
+    if (off_plane(apex) > allowed_off) continue;
+    double smallest = 180;
+    for (const FaceSplit& f : crack.faces) {
+      for (const Triangle& t : f.triangles) {
+        const auto angles = geometry::DihedralAnglesDeg(apex, rest(t[0]), rest(t[1]), rest(t[2]));
+        smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
+      }
+    }
+    if (smallest > best_angle) {
+      best_angle = smallest;
+      best = w;
+    }
+  }
+  return best;
 }
 
 CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {

@@ -64,8 +64,16 @@ CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
 // points at once). Each such group joins one group beside it: the crack faces between them go.
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split);
 
+// The barycentric weights of a cone's apex for good. Where the crack has an inner part: of points
+// on the plane that fits its trace points (their middle, the tet's middle projected on that
+// plane, and points between), each pulled inside, the one whose cone's smallest dihedral angle
+// is largest, so the crack's faces stay on the swept surface and its pieces are as round as the
+// faces' triangles allow. Elsewhere the tet's middle. `rest` gives rest positions.
+Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
+                                const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
+
 // A cone's apex is kept at least this far (barycentric) from the tet's faces.
-inline constexpr double kApexMargin = 0.1;
+inline constexpr double kApexMargin = 0.15;
 // Barycentric weights (summing to 1) moved towards the tet's middle until each is at least
 // kApexMargin.
 Eigen::Vector4d PulledInside(const Eigen::Vector4d& weights);

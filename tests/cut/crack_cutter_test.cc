@@ -85,6 +85,30 @@ TEST(CrackCutter, TwoTetsCutThroughStayConformingAndPart) {
   }
 }
 
+// A second pass beside the first, 0.12 away across pieces whose edges are half the tissue's:
+// its crossings are within the snap fraction of the tissue's edges of the first crack's points
+// (though not of the pieces' edges), so they snap onto them and make no pieces finer than a cut
+// through whole tets would.
+TEST(CrackCutter, CutsThroughPiecesSnapAsFarAsThroughTheirTet) {
+  TetMesh m = kerf::testing::UnitTet();
+  CrackCutter cutter = *CrackCutter::Create(
+      &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100}, {.mode = CutMode::kDeferred});
+  // The plane x = 0.5 swept upwards cuts corner 1 off at its edges' middles.
+  ASSERT_TRUE(cutter.ApplyPose({0, {0.5, -1, -1}, {0.5, 2, -1}}).ok());
+  ASSERT_TRUE(cutter.ApplyPose({1, {0.5, -1, 2}, {0.5, 2, 2}}).ok());
+  ASSERT_TRUE(cutter.ApplyPose({2, {0.62, -1, 2}, {0.62, 2, 2}}).ok());  // above the tet
+  const std::size_t tets = m.tet_count(), vertices = m.vertex_count();
+  ASSERT_GT(tets, 1u);
+  // The plane x = 0.62 swept downwards crosses the corner's edges 0.24 of their pieces' length
+  // from the first points.
+  ASSERT_TRUE(cutter.ApplyPose({3, {0.62, -1, -1}, {0.62, 2, -1}}).ok());
+  cutter.Finish();
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_EQ(m.tet_count(), tets);
+  EXPECT_EQ(m.vertex_count(), vertices);
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+}
+
 // A blade trembling back and forth across edges cuts each once (deferred: the first crossing
 // is the cut, later ones are the same cut): the same tets as one clean pass.
 TEST(CrackCutter, TrembleAcrossEdgesCutsThemOnce) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <map>
 #include <random>
@@ -65,6 +66,13 @@ class OneTet {
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) x += w[k] * Rest(corners_[k]);
     return Add(x);
+  }
+  // The barycentric weights of `x` on the corners.
+  Eigen::Vector4d Weights(const Eigen::Vector3d& x) const {
+    Eigen::Matrix3d frame;
+    for (int k = 0; k < 3; ++k) frame.col(k) = Rest(corners_[k + 1]) - Rest(corners_[0]);
+    const Eigen::Vector3d w = frame.lu().solve(x - Rest(corners_[0]));
+    return {1 - w.sum(), w.x(), w.y(), w.z()};
   }
   double Volume(const mesh::TetVertices& t) const {
     return geometry::SignedVolume(Rest(t[0]), Rest(t[1]), Rest(t[2]), Rest(t[3]));
@@ -319,6 +327,59 @@ TEST(CrackSplit, ACornerOnTheCrackCutOffIsNotWalledIn) {
   ReleaseWalledInPieces(crack, &*split);
   ExpectTiles(tet, crack, *split);
   ExpectNoPieceWalledIn(crack, *split);
+}
+
+// The smallest dihedral angle of the cone from the apex at `weights` over the faces' triangles.
+double SmallestConeAngle(OneTet& tet, const TetCrack& crack, const Eigen::Vector4d& weights) {
+  const CrackSplit split = SplitAsCone(crack, tet.Apex(weights));
+  double smallest = 180;
+  for (const mesh::TetVertices& t : split.tets) {
+    const auto angles =
+        geometry::DihedralAnglesDeg(tet.Rest(t[0]), tet.Rest(t[1]), tet.Rest(t[2]), tet.Rest(t[3]));
+    smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
+  }
+  return smallest;
+}
+
+// Two edges of face 012 cut (the crack lies in that face only): the tet is split only to match
+// its faces, from an apex anywhere inside; the one chosen makes rounder pieces than the middle.
+TEST(CrackSplit, AConeOnlyMatchingItsFacesHasItsRoundestApex) {
+  OneTet tet;
+  tet.CutEdge(0, 1, 0.5);
+  tet.CutEdge(0, 2, 0.5);
+  const TetCrack crack = tet.Crack();
+  const auto rest = [&](VertexId v) { return tet.Rest(v); };
+  ASSERT_FALSE(HasInnerCrack(crack));
+  ASSERT_FALSE(SplitWithoutApex(crack, rest));
+  const Eigen::Vector4d chosen = ConeApexWeights(crack, rest);
+  EXPECT_GE(chosen.minCoeff(), kApexMargin - 1e-12);
+  EXPECT_GT(SmallestConeAngle(tet, crack, chosen),
+            SmallestConeAngle(tet, crack, Eigen::Vector4d::Constant(0.25)) + 2);
+}
+
+// A crack across the tet (corner 3 cut off by a tilted plane): the apex stays on the crack's
+// plane, inside by the margin, and its cone is no flatter than the one from the middle of the
+// trace points.
+TEST(CrackSplit, TheConesApexStaysOnTheCrack) {
+  OneTet tet;
+  tet.CutEdge(3, 0, 0.7);
+  tet.CutEdge(3, 1, 0.5);
+  tet.CutEdge(3, 2, 0.6);
+  const TetCrack crack = tet.Crack();
+  ASSERT_TRUE(HasInnerCrack(crack));
+  const Eigen::Vector4d chosen = ConeApexWeights(crack, [&](VertexId v) { return tet.Rest(v); });
+  EXPECT_NEAR(chosen.sum(), 1, 1e-12);
+  EXPECT_GE(chosen.minCoeff(), kApexMargin - 1e-12);
+  const std::vector<VertexId> points = TracePoints(crack);
+  ASSERT_EQ(points.size(), 3u);
+  Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+  for (const VertexId v : points) middle += tet.Rest(v) / 3;
+  const Eigen::Vector3d normal = (tet.Rest(points[1]) - tet.Rest(points[0]))
+                                     .cross(tet.Rest(points[2]) - tet.Rest(points[0]))
+                                     .normalized();
+  EXPECT_NEAR(normal.dot(tet.Rest(tet.Apex(chosen)) - middle), 0, 1e-12);
+  EXPECT_GE(SmallestConeAngle(tet, crack, chosen),
+            SmallestConeAngle(tet, crack, PulledInside(tet.Weights(middle))));
 }
 
 }  // namespace
