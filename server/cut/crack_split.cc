@@ -304,10 +304,7 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
   Eigen::Vector4d best = pulled(from);
   const double allowed_off = off_plane(apex_at(best)) * (1 + 1e-9) + 1e-12;
   double best_angle = -1;
-  for (const double s : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-    const Eigen::Vector4d w = pulled(from + s * (to - from));
-    const Eigen::Vector3d apex = apex_at(w);
-    if (off_plane(apex) > allowed_off) continue;
+  const auto smallest_angle = [&](const Eigen::Vector3d& apex) {
     double smallest = 180;
     for (const FaceSplit& f : crack.faces) {
       for (const Triangle& t : f.triangles) {
@@ -315,10 +312,33 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
         smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
       }
     }
-    if (smallest > best_angle) {
-      best_angle = smallest;
-      best = w;
-    }
+    return smallest;
+  };
+  const auto consider = [&](const Eigen::Vector3d& x) {
+    const Eigen::Vector4d w = pulled(x);
+    const Eigen::Vector3d apex = apex_at(w);
+    if (off_plane(apex) > allowed_off) return false;
+    const double angle = smallest_angle(apex);
+    if (angle <= best_angle) return false;
+    best_angle = angle;
+    best = w;
+    return true;
+  };
+  for (const double s : {0.0, 0.25, 0.5, 0.75, 1.0}) consider(from + s * (to - from));
+  // Then a pattern search around the best, along the crack's plane where there is one.
+  std::vector<Eigen::Vector3d> directions;
+  if (normal) {
+    const Eigen::Vector3d u = normal->unitOrthogonal(), v = normal->cross(u);
+    directions = {u, -u, v, -v};
+  } else if (!HasInnerCrack(crack)) {
+    directions = {Eigen::Vector3d::UnitX(),  -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                  -Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),  -Eigen::Vector3d::UnitZ()};
+  }
+  double step = 0;
+  for (int k = 1; k < 4; ++k) step += (corner[k] - corner[0]).norm() / 12;
+  for (int round = 0; round < 3 && !directions.empty(); ++round, step /= 2) {
+    const Eigen::Vector3d centre_of_search = apex_at(best);
+    for (const Eigen::Vector3d& d : directions) consider(centre_of_search + step * d);
   }
   return best;
 }

@@ -66,9 +66,11 @@ void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split);
 
 // The barycentric weights of a cone's apex for good. Where the crack has an inner part: of points
 // on the plane that fits its trace points (their middle, the tet's middle projected on that
-// plane, and points between), each pulled inside, the one whose cone's smallest dihedral angle
-// is largest, so the crack's faces stay on the swept surface and its pieces are as round as the
-// faces' triangles allow. Elsewhere the tet's middle. `rest` gives rest positions.
+// plane, points between, then a short pattern search on the plane), each pulled inside along the
+// plane where it can be, the one whose cone's smallest dihedral angle is largest, so the crack's
+// faces stay on the swept surface and its pieces are as round as the faces' triangles allow.
+// Where it has none, the same search from the tet's middle, anywhere inside. About 20 cones are
+// tried. `rest` gives rest positions.
 Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
                                 const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
