@@ -278,6 +278,7 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
       {.cells_x = 4, .cells_y = 6, .cells_z = 4, .size = Eigen::Vector3d(0.04, 0.06, 0.04)});
   for (const lab::PathFamily family : kFamilies) {
     double lowest = 1, mean = 0;
+    std::size_t new_tets = 0, slivers = 0;
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
       SCOPED_TRACE(::testing::Message() << lab::PathFamilyName(family) << " seed " << seed);
       const PathResult r = CutChecked(lattice, GetParam(), family, seed);
@@ -288,15 +289,21 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
       EXPECT_GE(r.fidelity.coverage, 0.99);
       EXPECT_EQ(r.fidelity.overcut_faces, 0u);
       EXPECT_GE(r.min_new_dihedral, 1.0);
+      new_tets += r.new_tets;
+      slivers += r.slivers;
     }
     EXPECT_GE(mean, 0.99) << lab::PathFamilyName(family);
+    // At most 0.5% of the new tets under 5 degrees.
+    EXPECT_LE(200 * slivers, new_tets) << lab::PathFamilyName(family);
     std::printf("lattice, %s: coverage lowest %.3f, mean %.3f\n",
                 std::string(lab::PathFamilyName(family)).c_str(), lowest, mean);
   }
 }
 
 // The liver of the paper's lineage and its finer remesh, made by other tools: every family,
-// three seeds each. Valid after every pose; coverage as measured (docs/cutting-fidelity.md).
+// three seeds each. Valid after every pose; coverage and slivers as measured
+// (docs/cutting-fidelity.md): no new tet under 1 degree, and under 5 degrees at most 1% of the
+// new tets over a liver's paths (the goal, 0.5%, is met but on liver.msh's vertices paths).
 TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
   for (const char* name : {"liver.msh", "liver2.msh"}) {
     const std::string path = kerf::testing::SharedMeshPath(name);
@@ -304,6 +311,7 @@ TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
     const TetMesh liver = *mesh::ReadMeshFile(path);
     double coverage = 0, below = 0;
     int runs = 0;
+    std::size_t new_tets = 0, slivers = 0;
     for (const lab::PathFamily family : kFamilies) {
       for (std::uint64_t seed = 1; seed <= 3; ++seed) {
         SCOPED_TRACE(::testing::Message()
@@ -313,13 +321,19 @@ TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
         EXPECT_GE(r.fidelity.coverage, 0.6);
         // What is not covered lies at the surface, but for a few samples (0.953 on one path).
         EXPECT_GE(r.fidelity.coverage_below_surface, 0.95);
+        EXPECT_GE(r.min_new_dihedral, 1.0);
+        new_tets += r.new_tets;
+        slivers += r.slivers;
         coverage += r.fidelity.coverage;
         below += r.fidelity.coverage_below_surface;
         ++runs;
       }
     }
-    std::printf("%s: mean coverage %.3f, below the surface %.3f, over %d paths\n", name,
-                coverage / runs, below / runs, runs);
+    std::printf(
+        "%s: mean coverage %.3f, below the surface %.3f, %zu of %zu new tets under 5 deg, "
+        "over %d paths\n",
+        name, coverage / runs, below / runs, slivers, new_tets, runs);
+    EXPECT_LE(100 * slivers, new_tets) << name;
     EXPECT_GE(coverage / runs, 0.95) << name;
     EXPECT_GE(below / runs, 0.99) << name;
   }
