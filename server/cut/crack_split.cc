@@ -109,6 +109,38 @@ std::vector<Triangle> InnerFacesOf(const TetCrack& crack, const std::vector<TetV
   return faces;
 }
 
+// The fan from a corner over the triangles of its opposite face, where every point of the tet
+// but that corner lies in the face (the crack in that face, or spanning from the corner to it: a
+// corner the crack passes through and cuts beside, case i with one cut snapped to its far end):
+// the faces at the corner are split by their rule from it, so the fan tiles as the rule does.
+std::optional<CrackSplit> SplitAsFan(const TetCrack& crack, bool inner) {
+  for (int c = 0; c < 4; ++c) {
+    const std::vector<VertexId>& face = FaceVertices(crack, c);
+    bool all_in_face = true;
+    for (int k = 0; k < 4 && all_in_face; ++k) {
+      for (const VertexId v : FaceVertices(crack, k)) {
+        if (v != crack.corners[c] && !Contains(face, v)) all_in_face = false;
+      }
+    }
+    if (!all_in_face) continue;
+    CrackSplit split;
+    split.kind = CrackSplitKind::kMinimal;
+    split.cut_case = CutCase::kFaceFan;
+    for (const Triangle& t : crack.faces[c].triangles) {
+      split.tets.push_back({crack.corners[c], t[0], t[1], t[2]});
+    }
+    if (!TilesFacesAsTheRule(crack, split.tets)) continue;
+    // With an inner crack the corner is on it: the crack spans from it to the face's traces.
+    if (inner) {
+      for (const auto& s : crack.faces[c].trace)
+        split.crack_faces.push_back({crack.corners[c], s[0], s[1]});
+    }
+    AddWholeFaceCracks(crack, &split);
+    return split;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 TetCrack MakeTetCrack(const TetVertices& corners, std::array<FacePoints, 4> points) {
@@ -200,17 +232,7 @@ std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
     }
     return std::nullopt;
   }
-  if (cuts.empty() && face_points.size() == 1 && !inner) {
-    // A lone point inside a face, the crack in that face only: a fan from the opposite corner.
-    const int k = face_points[0].face;
-    split.kind = CrackSplitKind::kMinimal;
-    split.cut_case = CutCase::kFaceFan;
-    for (const auto& t : crack.faces[k].triangles) {
-      split.tets.push_back({crack.corners[k], t[0], t[1], t[2]});
-    }
-    AddWholeFaceCracks(crack, &split);
-    return split;
-  }
+  if (std::optional<CrackSplit> fan = SplitAsFan(crack, inner)) return fan;
   if (corner_traces || !inner) return std::nullopt;
   TetSplit minimal;
   if (face_points.empty()) {

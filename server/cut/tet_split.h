@@ -40,7 +40,7 @@ enum class CutCase {
   kCrackThreeEdges,  // case v: three cut edges in a path, the crack ending inside (9-10 tets)
   kStar,             // a cone from a point inside over the tet's faces (see SplitAsStar)
   kSplitEdge,        // snapped: one closed cut alone, two tets (SplitAtClosedCut)
-  kFaceFan,          // a lone point inside one face: a fan from the opposite corner (3 tets)
+  kFaceFan,          // every point but a corner's in its opposite face: a fan from the corner
 };
 
 // Where the blade's tip path crossed a face: one vertex, the base of the crack.

@@ -296,6 +296,29 @@ TEST(CrackSplit, ALonePointInAFaceOnTheCrackIsAFanOfThree) {
   ExpectTiles(tet, crack, *split);
 }
 
+// Case i with one of its cuts snapped to the far corner: corner 3 on the crack and edges 0-1 and
+// 0-2 cut. The crack (3, e01, e02) cuts corner 0 off; a fan from corner 3 over face 012's three
+// triangles is the split, no cone.
+TEST(CrackSplit, ACutCornerSnappedOntoTheCrackIsAFanFromIt) {
+  OneTet tet;
+  tet.CornerOnCrack(3);
+  tet.CutEdge(0, 1, 0.4);
+  tet.CutEdge(0, 2, 0.4);
+  const TetCrack crack = tet.Crack();
+  ASSERT_TRUE(HasInnerCrack(crack));
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->cut_case, CutCase::kFaceFan);
+  EXPECT_EQ(split->tets.size(), 3u);
+  for (const mesh::TetVertices& t : split->tets) EXPECT_TRUE(mesh::TetHasVertex(t, VertexId(3)));
+  ASSERT_EQ(split->crack_faces.size(), 1u);
+  const Triangle& crack_face = split->crack_faces[0];
+  EXPECT_NE(std::find(crack_face.begin(), crack_face.end(), VertexId(3)), crack_face.end());
+  ExpectTiles(tet, crack, *split);
+  ExpectNoPieceWalledIn(crack, *split);
+}
+
 // Three corners on the crack (their face lies on it) and the two edges from two of them to the
 // fourth cut: the cone's faces through the on-crack face's edges would wall in the piece over
 // it; none is.
@@ -305,7 +328,6 @@ TEST(CrackSplit, AConeWallsInNoPieceOverAFaceOnTheCrack) {
   tet.CutEdge(0, 1, 0.3);
   tet.CutEdge(0, 2, 0.3);
   const TetCrack crack = tet.Crack();
-  ASSERT_FALSE(SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); }));
   CrackSplit split = SplitAsCone(crack, tet.Apex({0.25, 0.25, 0.25, 0.25}));
   ReleaseWalledInPieces(crack, &split);
   ExpectTiles(tet, crack, split);
@@ -341,12 +363,12 @@ double SmallestConeAngle(OneTet& tet, const TetCrack& crack, const Eigen::Vector
   return smallest;
 }
 
-// Two edges of face 012 cut (the crack lies in that face only): the tet is split only to match
-// its faces, from an apex anywhere inside; the one chosen makes rounder pieces than the middle.
+// Two opposite edges cut, no crack inside: the tet is split only to match its faces, from an
+// apex anywhere inside; the one chosen makes rounder pieces than the middle.
 TEST(CrackSplit, AConeOnlyMatchingItsFacesHasItsRoundestApex) {
   OneTet tet;
-  tet.CutEdge(0, 1, 0.5);
-  tet.CutEdge(0, 2, 0.5);
+  tet.CutEdge(0, 1, 0.3);
+  tet.CutEdge(2, 3, 0.5);
   const TetCrack crack = tet.Crack();
   const auto rest = [&](VertexId v) { return tet.Rest(v); };
   ASSERT_FALSE(HasInnerCrack(crack));
@@ -354,7 +376,7 @@ TEST(CrackSplit, AConeOnlyMatchingItsFacesHasItsRoundestApex) {
   const Eigen::Vector4d chosen = ConeApexWeights(crack, rest);
   EXPECT_GE(chosen.minCoeff(), kApexMargin - 1e-12);
   EXPECT_GT(SmallestConeAngle(tet, crack, chosen),
-            SmallestConeAngle(tet, crack, Eigen::Vector4d::Constant(0.25)) + 2);
+            SmallestConeAngle(tet, crack, Eigen::Vector4d::Constant(0.25)) + 1);
 }
 
 // A crack across the tet (corner 3 cut off by a tilted plane): the apex stays on the crack's
