@@ -130,10 +130,29 @@ std::optional<CrackSplit> SplitAsFan(const TetCrack& crack, bool inner) {
       split.tets.push_back({crack.corners[c], t[0], t[1], t[2]});
     }
     if (!TilesFacesAsTheRule(crack, split.tets)) continue;
-    // With an inner crack the corner is on it: the crack spans from it to the face's traces.
+    // With an inner crack the corner is on it: the crack spans from it to the face's points on
+    // the crack, through each edge inside the face's split joining two of them.
     if (inner) {
-      for (const auto& s : crack.faces[c].trace)
-        split.crack_faces.push_back({crack.corners[c], s[0], s[1]});
+      const FacePoints& p = crack.points[c];
+      std::vector<VertexId> on_crack;
+      for (int j = 0; j < 3; ++j) {
+        if (p.corner_on_crack[j]) on_crack.push_back(p.corners[j]);
+        if (p.on_edge[j]) on_crack.push_back(*p.on_edge[j]);
+      }
+      if (p.inside) on_crack.push_back(*p.inside);
+      std::map<std::array<VertexId, 2>, int> edges;
+      for (const Triangle& t : crack.faces[c].triangles) {
+        for (int j = 0; j < 3; ++j) {
+          const VertexId a = t[j], b = t[(j + 1) % 3];
+          ++edges[Index(a) < Index(b) ? std::array<VertexId, 2>{a, b}
+                                      : std::array<VertexId, 2>{b, a}];
+        }
+      }
+      for (const auto& [e, count] : edges) {
+        if (count == 2 && Contains(on_crack, e[0]) && Contains(on_crack, e[1])) {
+          split.crack_faces.push_back({crack.corners[c], e[0], e[1]});
+        }
+      }
     }
     AddWholeFaceCracks(crack, &split);
     return split;

@@ -319,6 +319,30 @@ TEST(CrackSplit, ACutCornerSnappedOntoTheCrackIsAFanFromIt) {
   ExpectNoPieceWalledIn(crack, *split);
 }
 
+// The tip's path through face 012 beside edge 0-1's cut, corners 2 and 3 on the crack: every
+// point but corner 3 lies in face 012, so a fan from 3; the crack spans from 3 to the face's
+// points on the crack: to the trace (point, e01) and to corner 2 through the point.
+TEST(CrackSplit, AFansCrackReachesEveryPointOfItsFaceOnTheCrack) {
+  OneTet tet;
+  tet.CornerOnCrack(2);
+  tet.CornerOnCrack(3);
+  tet.CutEdge(0, 1, 0.4);
+  tet.PointInFace(3, {0.3, 0.4, 0.3});
+  const TetCrack crack = tet.Crack();
+  ASSERT_TRUE(HasInnerCrack(crack));
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->cut_case, CutCase::kFaceFan);
+  const VertexId inside = *crack.points[3].inside, e01 = *crack.points[3].on_edge[2];  // 1 to 0
+  std::set<Triangle> faces;
+  for (const Triangle& f : split->crack_faces) faces.insert(Sorted(f));
+  EXPECT_TRUE(faces.contains(Sorted({VertexId(3), inside, e01})));
+  EXPECT_TRUE(faces.contains(Sorted({VertexId(3), inside, VertexId(2)})));
+  EXPECT_EQ(faces.size(), 2u);
+  ExpectTiles(tet, crack, *split);
+}
+
 // Three corners on the crack (their face lies on it) and the two edges from two of them to the
 // fourth cut: the cone's faces through the on-crack face's edges would wall in the piece over
 // it; none is.
