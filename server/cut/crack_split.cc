@@ -278,6 +278,66 @@ Eigen::Vector4d PulledInside(const Eigen::Vector4d& w) {
   return w + std::min(pull, 1.0) * (Eigen::Vector4d::Constant(0.25) - w);
 }
 
+namespace {
+
+// The smallest dihedral angle of the cone from `apex` over the crack's face triangles (degrees).
+double SmallestConeAngle(const TetCrack& crack,
+                         const std::function<Eigen::Vector3d(VertexId)>& rest,
+                         const Eigen::Vector3d& apex) {
+  double smallest = 180;
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.triangles) {
+      const auto angles = geometry::DihedralAnglesDeg(apex, rest(t[0]), rest(t[1]), rest(t[2]));
+      smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
+    }
+  }
+  return smallest;
+}
+
+// Where a cone's apex is looked for: from `from` towards `to`, on the crack's plane if it has
+// one. Where the crack has no inner part the apex may be anywhere inside: from the tet's middle
+// towards the middle of its faces' points. Otherwise from the middle of the trace points towards
+// the tet's middle projected on the plane that fits them (its normal: their spread's least
+// direction), so the crack's faces stay where the traces are.
+struct ApexLine {
+  Eigen::Vector3d from, to;
+  std::optional<Eigen::Vector3d> normal;
+};
+
+ApexLine ApexLineOf(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+                    const Eigen::Vector3d& centre) {
+  const auto middle_of = [&](const std::vector<VertexId>& points) {
+    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+    for (const VertexId v : points) middle += rest(v);
+    return Eigen::Vector3d(middle / static_cast<double>(points.size()));
+  };
+  ApexLine line{centre, centre, std::nullopt};
+  if (!HasInnerCrack(crack)) {
+    std::vector<VertexId> on_faces;
+    for (const auto& vertices : crack.face_vertices) {
+      for (const VertexId v : vertices) {
+        if (!mesh::TetHasVertex(crack.corners, v) && !Contains(on_faces, v)) on_faces.push_back(v);
+      }
+    }
+    if (!on_faces.empty()) line.to = middle_of(on_faces);
+    return line;
+  }
+  const std::vector<VertexId> points = TracePoints(crack);
+  line.from = line.to = middle_of(points);
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (const VertexId v : points) {
+    spread += (rest(v) - line.from) * (rest(v) - line.from).transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
+  if (points.size() >= 3 && eigen.eigenvalues()[1] > 1e-6 * eigen.eigenvalues()[2]) {
+    line.normal = eigen.eigenvectors().col(0);
+    line.to = centre - line.normal->dot(centre - line.from) * *line.normal;
+  }
+  return line;
+}
+
+}  // namespace
+
 Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
                                 const std::function<Eigen::Vector3d(VertexId)>& rest) {
   std::array<Eigen::Vector3d, 4> corner;
@@ -289,50 +349,18 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
     const Eigen::Vector3d w = lu.solve(p - corner[0]);
     return Eigen::Vector4d(1 - w.sum(), w.x(), w.y(), w.z());
   };
-  const auto middle_of = [&](const std::vector<VertexId>& points) {
-    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-    for (const VertexId v : points) middle += rest(v);
-    return Eigen::Vector3d(middle / static_cast<double>(points.size()));
-  };
-  const Eigen::Vector3d centre = (corner[0] + corner[1] + corner[2] + corner[3]) / 4;
-  // Where the crack has no inner part the apex may be anywhere inside: candidates run from the
-  // tet's middle towards the middle of its faces' points. Otherwise from the middle of the trace
-  // points towards the tet's middle projected on the plane that fits them (its normal: their
-  // spread's least direction), so the crack's faces stay where the traces are.
-  Eigen::Vector3d from = centre, to = centre;
-  std::optional<Eigen::Vector3d> normal;  // of the crack's plane
-  if (!HasInnerCrack(crack)) {
-    std::vector<VertexId> on_faces;
-    for (const auto& vertices : crack.face_vertices) {
-      for (const VertexId v : vertices) {
-        if (!mesh::TetHasVertex(crack.corners, v) && !Contains(on_faces, v)) on_faces.push_back(v);
-      }
-    }
-    if (!on_faces.empty()) to = middle_of(on_faces);
-  } else {
-    const std::vector<VertexId> points = TracePoints(crack);
-    from = to = middle_of(points);
-    Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-    for (const VertexId v : points) spread += (rest(v) - from) * (rest(v) - from).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
-    if (points.size() >= 3 && eigen.eigenvalues()[1] > 1e-6 * eigen.eigenvalues()[2]) {
-      normal = eigen.eigenvectors().col(0);
-      to = centre - normal->dot(centre - from) * *normal;
-    }
-  }
-  // The candidate whose cone's smallest dihedral angle is largest (the first of equals), among
-  // those pulled inside no farther off the crack's plane than the first.
   const auto apex_at = [&](const Eigen::Vector4d& w) {
     Eigen::Vector3d apex = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) apex += w[k] * corner[k];
     return apex;
   };
+  const ApexLine line = ApexLineOf(crack, rest, apex_at(Eigen::Vector4d::Constant(0.25)));
   const auto off_plane = [&](const Eigen::Vector3d& apex) {
-    return normal ? std::abs(normal->dot(apex - from)) : 0.0;
+    return line.normal ? std::abs(line.normal->dot(apex - line.from)) : 0.0;
   };
   // A point is pulled inside towards `to` where that keeps the margin (on the crack's plane),
   // else towards the tet's middle.
-  const Eigen::Vector4d target = weights_of(to);
+  const Eigen::Vector4d target = weights_of(line.to);
   const auto pulled = [&](const Eigen::Vector3d& x) {
     const Eigen::Vector4d w = weights_of(x);
     if (target.minCoeff() < kApexMargin) return PulledInside(w);
@@ -342,34 +370,26 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
     }
     return Eigen::Vector4d(w + t * (target - w));
   };
-  Eigen::Vector4d best = pulled(from);
+  // The candidate whose cone's smallest dihedral angle is largest (the first of equals), among
+  // those pulled inside no farther off the crack's plane than the first.
+  Eigen::Vector4d best = pulled(line.from);
   const double allowed_off = off_plane(apex_at(best)) * (1 + 1e-9) + 1e-12;
   double best_angle = -1;
-  const auto smallest_angle = [&](const Eigen::Vector3d& apex) {
-    double smallest = 180;
-    for (const FaceSplit& f : crack.faces) {
-      for (const Triangle& t : f.triangles) {
-        const auto angles = geometry::DihedralAnglesDeg(apex, rest(t[0]), rest(t[1]), rest(t[2]));
-        smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
-      }
-    }
-    return smallest;
-  };
   const auto consider = [&](const Eigen::Vector3d& x) {
     const Eigen::Vector4d w = pulled(x);
     const Eigen::Vector3d apex = apex_at(w);
-    if (off_plane(apex) > allowed_off) return false;
-    const double angle = smallest_angle(apex);
-    if (angle <= best_angle) return false;
+    if (off_plane(apex) > allowed_off) return;
+    const double angle = SmallestConeAngle(crack, rest, apex);
+    if (angle <= best_angle) return;
     best_angle = angle;
     best = w;
-    return true;
   };
-  for (const double s : {0.0, 0.25, 0.5, 0.75, 1.0}) consider(from + s * (to - from));
+  for (const double s : {0.0, 0.25, 0.5, 0.75, 1.0})
+    consider(line.from + s * (line.to - line.from));
   // Then a pattern search around the best, along the crack's plane where there is one.
   std::vector<Eigen::Vector3d> directions;
-  if (normal) {
-    const Eigen::Vector3d u = normal->unitOrthogonal(), v = normal->cross(u);
+  if (line.normal) {
+    const Eigen::Vector3d u = line.normal->unitOrthogonal(), v = line.normal->cross(u);
     directions = {u, -u, v, -v};
   } else if (!HasInnerCrack(crack)) {
     directions = {Eigen::Vector3d::UnitX(),  -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
@@ -378,8 +398,8 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
   double step = 0;
   for (int k = 1; k < 4; ++k) step += (corner[k] - corner[0]).norm() / 12;
   for (int round = 0; round < 3 && !directions.empty(); ++round, step /= 2) {
-    const Eigen::Vector3d centre_of_search = apex_at(best);
-    for (const Eigen::Vector3d& d : directions) consider(centre_of_search + step * d);
+    const Eigen::Vector3d around = apex_at(best);
+    for (const Eigen::Vector3d& d : directions) consider(around + step * d);
   }
   return best;
 }
