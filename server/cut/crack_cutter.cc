@@ -339,16 +339,9 @@ void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
 }
 
 double CrackCutter::SnapShare(std::span<const VertexId> corners) const {
-  double sum = 0, scale = 0;
-  int edges = 0;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    scale = std::max(scale, TissueScale(corners[i]));
-    for (std::size_t j = i + 1; j < corners.size(); ++j, ++edges) {
-      sum += (mesh_->rest_position(corners[i]) - mesh_->rest_position(corners[j])).norm();
-    }
-  }
-  const double own = sum / edges;
-  return own > 0 ? snap_fraction_ * std::max(own, scale) / own : snap_fraction_;
+  const Lengths lengths = LengthsOf(corners);
+  const double own = lengths.mean_edge;
+  return own > 0 ? snap_fraction_ * std::max(own, lengths.scale) / own : snap_fraction_;
 }
 
 void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {

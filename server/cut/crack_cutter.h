@@ -193,6 +193,12 @@ class CrackCutter {
   }
   double ScaleOf(const std::array<mesh::VertexId, 4>& origins,
                  const Eigen::Vector4d& weights) const;
+  // The mean rest length of the edges between `vertices` (0 for fewer than two) and the largest
+  // TissueScale among them.
+  struct Lengths {
+    double mean_edge = 0, scale = 0;
+  };
+  Lengths LengthsOf(std::span<const mesh::VertexId> vertices) const;
   // The blade's crossings of faces at a pose, by face.
   using BladeFaceCrossings =
       absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>;

@@ -271,15 +271,22 @@ double CrackCutter::ScaleOf(const std::array<VertexId, 4>& origins,
       used.push_back(origins[k]);
     }
   }
-  double sum = 0, scale = 0;
+  const Lengths lengths = LengthsOf(used);
+  return std::max(lengths.scale, lengths.mean_edge);
+}
+
+CrackCutter::Lengths CrackCutter::LengthsOf(std::span<const VertexId> vertices) const {
+  Lengths lengths;
+  double sum = 0;
   int edges = 0;
-  for (std::size_t i = 0; i < used.size(); ++i) {
-    scale = std::max(scale, TissueScale(used[i]));
-    for (std::size_t j = i + 1; j < used.size(); ++j, ++edges) {
-      sum += (mesh_->rest_position(used[i]) - mesh_->rest_position(used[j])).norm();
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    lengths.scale = std::max(lengths.scale, TissueScale(vertices[i]));
+    for (std::size_t j = i + 1; j < vertices.size(); ++j, ++edges) {
+      sum += (mesh_->rest_position(vertices[i]) - mesh_->rest_position(vertices[j])).norm();
     }
   }
-  return edges == 0 ? scale : std::max(scale, sum / edges);
+  if (edges > 0) lengths.mean_edge = sum / edges;
+  return lengths;
 }
 
 std::vector<TetId> CrackCutter::Replace(TetId unit, const std::vector<mesh::TetVertices>& pieces) {
