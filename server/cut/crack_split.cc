@@ -249,7 +249,7 @@ std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
       AddWholeFaceCracks(crack, &split);
       return split;
     }
-    return std::nullopt;
+    // Else the crack runs along the cut edge or to a corner at it: a fan, if any, splits it.
   }
   if (std::optional<CrackSplit> fan = SplitAsFan(crack, inner)) return fan;
   if (corner_traces || !inner) return std::nullopt;

@@ -343,6 +343,23 @@ TEST(CrackSplit, AFansCrackReachesEveryPointOfItsFaceOnTheCrack) {
   ExpectTiles(tet, crack, *split);
 }
 
+// A crack along edge 0-1 from corner 0 (on the crack) to its point: not the bisection's pattern
+// (its crack runs through the opposite edge), yet every point lies in face 013 (and 012): the
+// fan from the corner opposite is the bisection's two tets, no cone.
+TEST(CrackSplit, ACrackAlongACutEdgeIsSplitInTwo) {
+  OneTet tet;
+  tet.CornerOnCrack(0);
+  tet.CutEdge(0, 1, 0.5);
+  const TetCrack crack = tet.Crack();
+  const std::optional<CrackSplit> split =
+      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->cut_case, CutCase::kFaceFan);
+  EXPECT_EQ(split->tets.size(), 2u);
+  EXPECT_TRUE(split->crack_faces.empty());
+  ExpectTiles(tet, crack, *split);
+}
+
 // Three corners on the crack (their face lies on it) and the two edges from two of them to the
 // fourth cut: the cone's faces through the on-crack face's edges would wall in the piece over
 // it; none is.
