@@ -302,8 +302,8 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
 
 // The liver of the paper's lineage and its finer remesh, made by other tools: every family,
 // three seeds each. Valid after every pose; coverage and slivers as measured
-// (docs/cutting-fidelity.md): no new tet under 1 degree, and under 5 degrees at most 1.5% of the
-// new tets over a liver's paths (the goal, 0.5%, is met but on liver.msh's vertices paths).
+// (docs/cutting-fidelity.md): no new tet under 1 degree, and under 5 degrees at most 1% of the
+// new tets over a liver's paths (the goal, 0.5% on each family, is met on 5 of 8).
 TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
   for (const char* name : {"liver.msh", "liver2.msh"}) {
     const std::string path = kerf::testing::SharedMeshPath(name);
@@ -333,7 +333,7 @@ TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
         "%s: mean coverage %.3f, below the surface %.3f, %zu of %zu new tets under 5 deg, "
         "over %d paths\n",
         name, coverage / runs, below / runs, slivers, new_tets, runs);
-    EXPECT_LE(200 * slivers, 3 * new_tets) << name;
+    EXPECT_LE(100 * slivers, new_tets) << name;
     EXPECT_GE(coverage / runs, 0.95) << name;
     EXPECT_GE(below / runs, 0.99) << name;
   }
