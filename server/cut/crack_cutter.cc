@@ -1,6 +1,5 @@
 #include "cut/crack_cutter.h"
 
-#include <Eigen/LU>
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
@@ -392,10 +391,7 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
   } else if (first <= last) {
     point = pose.tip + 0.5 * (first + last) * (pose.heel - pose.tip);
   }
-  Eigen::Matrix3d m;
-  for (int k = 0; k < 3; ++k) m.col(k) = x[k + 1] - x[0];
-  const Eigen::Vector3d w = m.fullPivLu().solve(point - x[0]);
-  in.apex = PulledInside({1 - w.sum(), w.x(), w.y(), w.z()});
+  in.apex = PulledInside(geometry::BarycentricWeights(x[0], x[1], x[2], x[3], point));
   return in;
 }
 

@@ -1,5 +1,4 @@
 // CrackCutter: splitting units and parting the crack's vertices (see crack_cutter.h).
-#include <Eigen/LU>
 #include <algorithm>
 
 #include "base/check.h"

@@ -1,7 +1,6 @@
 #include "cut/crack_split.h"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 #include <algorithm>
 #include <map>
 
@@ -342,12 +341,8 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
                                 const std::function<Eigen::Vector3d(VertexId)>& rest) {
   std::array<Eigen::Vector3d, 4> corner;
   for (int k = 0; k < 4; ++k) corner[k] = rest(crack.corners[k]);
-  Eigen::Matrix3d frame;
-  for (int k = 0; k < 3; ++k) frame.col(k) = corner[k + 1] - corner[0];
-  const Eigen::FullPivLU<Eigen::Matrix3d> lu(frame);
   const auto weights_of = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector3d w = lu.solve(p - corner[0]);
-    return Eigen::Vector4d(1 - w.sum(), w.x(), w.y(), w.z());
+    return geometry::BarycentricWeights(corner[0], corner[1], corner[2], corner[3], p);
   };
   const auto apex_at = [&](const Eigen::Vector4d& w) {
     Eigen::Vector3d apex = Eigen::Vector3d::Zero();

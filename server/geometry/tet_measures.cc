@@ -1,6 +1,7 @@
 #include "geometry/tet_measures.h"
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -92,6 +93,14 @@ bool ContainsPoint(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
   const double volume = SignedVolume(a, b, c, d);
   return SignedVolume(p, b, c, d) * volume >= 0 && SignedVolume(a, p, c, d) * volume >= 0 &&
          SignedVolume(a, b, p, d) * volume >= 0 && SignedVolume(a, b, c, p) * volume >= 0;
+}
+
+Eigen::Vector4d BarycentricWeights(const Vector3d& a, const Vector3d& b, const Vector3d& c,
+                                   const Vector3d& d, const Vector3d& p) {
+  Eigen::Matrix3d frame;
+  frame << b - a, c - a, d - a;
+  const Vector3d w = frame.fullPivLu().solve(p - a);
+  return {1 - w.sum(), w.x(), w.y(), w.z()};
 }
 
 }  // namespace kerf::geometry

@@ -19,6 +19,12 @@ double SignedVolume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 bool ContainsPoint(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d, const Eigen::Vector3d& p);
 
+// The barycentric weights of `p` on the corners (a, b, c, d): summing to 1, all in [0, 1] for a
+// point inside, the point itself being sum w_k x_k. The tet must not be flat.
+Eigen::Vector4d BarycentricWeights(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                   const Eigen::Vector3d& c, const Eigen::Vector3d& d,
+                                   const Eigen::Vector3d& p);
+
 // The six interior dihedral angles, in degrees, at edges ab, ac, ad, bc, bd, cd.
 // A degenerate (flat) tet has angles of 0 or 180; a zero-area face gives NaN-free 0.
 std::array<double, 6> DihedralAnglesDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

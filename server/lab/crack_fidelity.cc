@@ -9,6 +9,7 @@
 
 #include "absl/container/flat_hash_map.h"
 #include "geometry/point_triangle_distance.h"
+#include "geometry/tet_measures.h"
 #include "mesh/boundary_surface.h"
 #include "mesh/mesh_quality.h"
 
@@ -38,13 +39,6 @@ Polygon ClipToTet(Polygon polygon, const std::array<Eigen::Vector3d, 4>& corners
     polygon = std::move(clipped);
   }
   return polygon.size() >= 3 ? polygon : Polygon{};
-}
-
-Eigen::Vector4d Barycentric(const std::array<Eigen::Vector3d, 4>& c, const Eigen::Vector3d& p) {
-  Eigen::Matrix3d m;
-  m << c[1] - c[0], c[2] - c[0], c[3] - c[0];
-  const Eigen::Vector3d w = m.fullPivLu().solve(p - c[0]);
-  return {1 - w.sum(), w.x(), w.y(), w.z()};
 }
 
 // A seeded point, uniform on a convex polygon.
@@ -213,7 +207,8 @@ const std::vector<FidelityMeter::Sample>& FidelityMeter::Samples() const {
 double FidelityMeter::LocalEdgeLength(const Eigen::Vector3d& p) const {
   double best = -HUGE_VAL, edge = mean_edge_;
   for (const std::uint32_t tet : tet_index_.Near(p, 0)) {
-    const double inside = Barycentric(tets_[tet], p).minCoeff();
+    const std::array<Eigen::Vector3d, 4>& c = tets_[tet];
+    const double inside = geometry::BarycentricWeights(c[0], c[1], c[2], c[3], p).minCoeff();
     if (inside > best) best = inside, edge = tet_edge_[tet];
   }
   return edge;

@@ -527,8 +527,8 @@ TEST(KerfCli, CutSnapsThroughVertices) {
 // Snapping where the crack's front is inside the tissue: along the curved path the tip runs
 // 1.3 mm under a plane of edges and beside vertices. By default the crossings near vertices are
 // taken at them: a handful of slivers and none under 4.5 degrees, where the least snapping
-// leaves over 50 (95 of 211 new tets) down to 0.3 degrees; the crack is one piece with the bar (2 cm deep, not
-// through) and the mesh valid after every pose, in both modes.
+// leaves over 50 (95 of 211 new tets) down to 0.3 degrees; the crack is one piece with the bar (2
+// cm deep, not through) and the mesh valid after every pose, in both modes.
 TEST(KerfCli, CutSnapsTheCracksFront) {
   for (const std::string mode : {"", " --deferred"}) {  // progressive (the default), deferred
     SCOPED_TRACE(mode);

@@ -39,6 +39,16 @@ TEST(ContainsPoint, InsideAndOnTheBoundaryButNotOutsideInEitherOrientation) {
   }
 }
 
+TEST(BarycentricWeights, RebuildThePointAndAreTheCornersOwnAtTheCorners) {
+  const Vector3d a(0.1, 0, 0), b(1, 0.2, 0), c(0, 1, 0.1), d(0.2, 0.3, 1);
+  EXPECT_TRUE(BarycentricWeights(a, b, c, d, c).isApprox(Eigen::Vector4d(0, 0, 1, 0)));
+  const Vector3d p(0.3, 0.25, 0.4);
+  const Eigen::Vector4d w = BarycentricWeights(a, b, c, d, p);
+  EXPECT_NEAR(w.sum(), 1, 1e-15);
+  EXPECT_TRUE((w[0] * a + w[1] * b + w[2] * c + w[3] * d).isApprox(p, 1e-14));
+  EXPECT_LT(BarycentricWeights(a, b, c, d, Vector3d(2, 2, 2)).minCoeff(), 0);  // outside
+}
+
 TEST(DihedralAngles, CornerTetHasThreeRightAnglesAndThreeOf54_7) {
   // Edges at the origin (ab, ac, ad) have 90 degrees; the far edges have
   // acos(1/sqrt(3)) = 54.7356 degrees.
