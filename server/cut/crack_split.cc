@@ -269,12 +269,12 @@ std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
   return split;
 }
 
-Eigen::Vector4d PulledInside(const Eigen::Vector4d& w) {
+Eigen::Vector4d PulledInside(const Eigen::Vector4d& w, const Eigen::Vector4d& towards) {
   double pull = 0;
   for (int k = 0; k < 4; ++k) {
-    if (w[k] < kApexMargin) pull = std::max(pull, (kApexMargin - w[k]) / (0.25 - w[k]));
+    if (w[k] < kApexMargin) pull = std::max(pull, (kApexMargin - w[k]) / (towards[k] - w[k]));
   }
-  return w + std::min(pull, 1.0) * (Eigen::Vector4d::Constant(0.25) - w);
+  return w + std::min(pull, 1.0) * (towards - w);
 }
 
 namespace {
@@ -356,14 +356,10 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
   // A point is pulled inside towards `to` where that keeps the margin (on the crack's plane),
   // else towards the tet's middle.
   const Eigen::Vector4d target = weights_of(line.to);
+  const Eigen::Vector4d towards =
+      target.minCoeff() < kApexMargin ? Eigen::Vector4d::Constant(0.25) : target;
   const auto pulled = [&](const Eigen::Vector3d& x) {
-    const Eigen::Vector4d w = weights_of(x);
-    if (target.minCoeff() < kApexMargin) return PulledInside(w);
-    double t = 0;
-    for (int k = 0; k < 4; ++k) {
-      if (w[k] < kApexMargin) t = std::max(t, (kApexMargin - w[k]) / (target[k] - w[k]));
-    }
-    return Eigen::Vector4d(w + t * (target - w));
+    return PulledInside(weights_of(x), towards);
   };
   // The candidate whose cone's smallest dihedral angle is largest (the first of equals), among
   // those pulled inside no farther off the crack's plane than the first.

@@ -76,8 +76,9 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
 
 // A cone's apex is kept at least this far (barycentric) from the tet's faces.
 inline constexpr double kApexMargin = 0.15;
-// Barycentric weights (summing to 1) moved towards the tet's middle until each is at least
-// kApexMargin.
-Eigen::Vector4d PulledInside(const Eigen::Vector4d& weights);
+// Barycentric weights (summing to 1) moved towards `towards` (weights each at least kApexMargin;
+// by default the tet's middle) until each is at least kApexMargin.
+Eigen::Vector4d PulledInside(const Eigen::Vector4d& weights,
+                             const Eigen::Vector4d& towards = Eigen::Vector4d::Constant(0.25));
 
 }  // namespace kerf::cut
