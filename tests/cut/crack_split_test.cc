@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <random>
 #include <set>
@@ -25,6 +26,9 @@ class OneTet {
     at_ = {{0, {0, 0, 0}}, {1, {1, 0, 0}}, {2, {0.2, 1, 0}}, {3, {0.3, 0.3, 1}}};
   }
   Eigen::Vector3d Rest(VertexId v) const { return at_.at(static_cast<int>(v)); }
+  std::function<Eigen::Vector3d(VertexId)> RestOf() const {
+    return [this](VertexId v) { return Rest(v); };
+  }
 
   // A point at `t` along the edge between corners i and j (shared by the faces at it).
   void CutEdge(int i, int j, double t) {
@@ -183,8 +187,7 @@ TEST(CrackSplit, AnyPointsOnATetSplitIt) {
       if (unit(random) < 0.15) tet.CornerOnCrack(k);
     }
     const TetCrack crack = tet.Crack();
-    std::optional<CrackSplit> split =
-        SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+    std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
     if (!split) {
       split = SplitAsCone(crack, tet.Apex({0.3, 0.2, 0.25, 0.25}));
       ++cones;
@@ -211,8 +214,7 @@ TEST(CrackSplit, ACornerCutOffIsCaseOne) {
   tet.CutEdge(0, 2, 0.4);
   tet.CutEdge(0, 3, 0.6);
   const TetCrack crack = tet.Crack();
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kOneCornerOff);
   EXPECT_EQ(split->tets.size(), 4u);
@@ -227,8 +229,7 @@ TEST(CrackSplit, TwoAndTwoIsCaseTwo) {
   tet.CutEdge(1, 2, 0.5);
   tet.CutEdge(1, 3, 0.5);
   const TetCrack crack = tet.Crack();
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kTwoAndTwo);
   EXPECT_EQ(split->tets.size(), 6u);
@@ -242,8 +243,7 @@ TEST(CrackSplit, ACrackThroughAnEdgeAndTwoCornersBisectsTheTet) {
   tet.CornerOnCrack(3);
   const TetCrack crack = tet.Crack();
   EXPECT_TRUE(HasInnerCrack(crack));
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->kind, CrackSplitKind::kBisected);
   EXPECT_EQ(split->tets.size(), 2u);
@@ -256,8 +256,7 @@ TEST(CrackSplit, ACrackEndingInsideIsCaseThreeWithAFaceOfItsTwoPointsAndTheEdgeP
   tet.PointInFace(3, {0.3, 0.3, 0.4});  // face 012
   tet.PointInFace(2, {0.3, 0.3, 0.4});  // face 013
   const TetCrack crack = tet.Crack();
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kCrackOneEdge);
   EXPECT_EQ(split->crack_faces.size(), 1u);
@@ -266,13 +265,11 @@ TEST(CrackSplit, ACrackEndingInsideIsCaseThreeWithAFaceOfItsTwoPointsAndTheEdgeP
 
 TEST(CrackSplit, NoPointsLeavesTheTetWholeAndAFaceOnTheCrackIsACrackFace) {
   OneTet tet;
-  EXPECT_EQ(SplitWithoutApex(tet.Crack(), [&](VertexId v) { return tet.Rest(v); })->tets.size(),
-            1u);
+  EXPECT_EQ(SplitWithoutApex(tet.Crack(), tet.RestOf())->tets.size(), 1u);
   tet.CornerOnCrack(1);
   tet.CornerOnCrack(2);
   tet.CornerOnCrack(3);
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(tet.Crack(), [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(tet.Crack(), tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->kind, CrackSplitKind::kWhole);
   EXPECT_EQ(split->crack_faces.size(), 1u);
@@ -286,8 +283,7 @@ TEST(CrackSplit, ALonePointInAFaceOnTheCrackIsAFanOfThree) {
   tet.PointInFace(0, {1.0 / 3, 1.0 / 3, 1.0 / 3});  // face 123
   const TetCrack crack = tet.Crack();
   EXPECT_FALSE(HasInnerCrack(crack));
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kFaceFan);
   EXPECT_EQ(split->tets.size(), 3u);
@@ -306,8 +302,7 @@ TEST(CrackSplit, ACutCornerSnappedOntoTheCrackIsAFanFromIt) {
   tet.CutEdge(0, 2, 0.4);
   const TetCrack crack = tet.Crack();
   ASSERT_TRUE(HasInnerCrack(crack));
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kFaceFan);
   EXPECT_EQ(split->tets.size(), 3u);
@@ -330,8 +325,7 @@ TEST(CrackSplit, AFansCrackReachesEveryPointOfItsFaceOnTheCrack) {
   tet.PointInFace(3, {0.3, 0.4, 0.3});
   const TetCrack crack = tet.Crack();
   ASSERT_TRUE(HasInnerCrack(crack));
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kFaceFan);
   const VertexId inside = *crack.points[3].inside, e01 = *crack.points[3].on_edge[2];  // 1 to 0
@@ -351,8 +345,7 @@ TEST(CrackSplit, ACrackAlongACutEdgeIsSplitInTwo) {
   tet.CornerOnCrack(0);
   tet.CutEdge(0, 1, 0.5);
   const TetCrack crack = tet.Crack();
-  const std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kFaceFan);
   EXPECT_EQ(split->tets.size(), 2u);
@@ -383,8 +376,7 @@ TEST(CrackSplit, ACornerOnTheCrackCutOffIsNotWalledIn) {
   tet.CornerOnCrack(0);
   for (const int j : {1, 2, 3}) tet.CutEdge(0, j, 0.4);
   const TetCrack crack = tet.Crack();
-  std::optional<CrackSplit> split =
-      SplitWithoutApex(crack, [&](VertexId v) { return tet.Rest(v); });
+  std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->cut_case, CutCase::kOneCornerOff);
   ReleaseWalledInPieces(crack, &*split);
@@ -411,7 +403,7 @@ TEST(CrackSplit, AConeOnlyMatchingItsFacesHasItsRoundestApex) {
   tet.CutEdge(0, 1, 0.3);
   tet.CutEdge(2, 3, 0.5);
   const TetCrack crack = tet.Crack();
-  const auto rest = [&](VertexId v) { return tet.Rest(v); };
+  const auto rest = tet.RestOf();
   ASSERT_FALSE(HasInnerCrack(crack));
   ASSERT_FALSE(SplitWithoutApex(crack, rest));
   const Eigen::Vector4d chosen = ConeApexWeights(crack, rest);
@@ -430,7 +422,7 @@ TEST(CrackSplit, TheConesApexStaysOnTheCrack) {
   tet.CutEdge(3, 2, 0.6);
   const TetCrack crack = tet.Crack();
   ASSERT_TRUE(HasInnerCrack(crack));
-  const Eigen::Vector4d chosen = ConeApexWeights(crack, [&](VertexId v) { return tet.Rest(v); });
+  const Eigen::Vector4d chosen = ConeApexWeights(crack, tet.RestOf());
   EXPECT_NEAR(chosen.sum(), 1, 1e-12);
   EXPECT_GE(chosen.minCoeff(), kApexMargin - 1e-12);
   const std::vector<VertexId> points = TracePoints(crack);
