@@ -112,6 +112,26 @@ std::vector<Triangle> InnerFacesOf(const TetCrack& crack, const std::vector<TetV
 // but that corner lies in the face (the crack in that face, or spanning from the corner to it: a
 // corner the crack passes through and cuts beside, case i with one cut snapped to its far end):
 // the faces at the corner are split by their rule from it, so the fan tiles as the rule does.
+// The crack of a fan from corner c with an inner crack (the corner is on it): from the corner to
+// each edge inside face c's split joining two of the face's points on the crack.
+std::vector<Triangle> FanCrackFaces(const TetCrack& crack, int c) {
+  const std::vector<VertexId> on_crack = PointsOnCrack(crack.points[c]);
+  std::map<std::array<VertexId, 2>, int> edges;  // of face c's triangles, with how many hold each
+  for (const Triangle& t : crack.faces[c].triangles) {
+    for (int j = 0; j < 3; ++j) {
+      const VertexId a = t[j], b = t[(j + 1) % 3];
+      ++edges[Index(a) < Index(b) ? std::array<VertexId, 2>{a, b} : std::array<VertexId, 2>{b, a}];
+    }
+  }
+  std::vector<Triangle> faces;
+  for (const auto& [e, count] : edges) {
+    if (count == 2 && Contains(on_crack, e[0]) && Contains(on_crack, e[1])) {
+      faces.push_back({crack.corners[c], e[0], e[1]});
+    }
+  }
+  return faces;
+}
+
 std::optional<CrackSplit> SplitAsFan(const TetCrack& crack, bool inner) {
   for (int c = 0; c < 4; ++c) {
     const std::vector<VertexId>& face = FaceVertices(crack, c);
@@ -129,30 +149,7 @@ std::optional<CrackSplit> SplitAsFan(const TetCrack& crack, bool inner) {
       split.tets.push_back({crack.corners[c], t[0], t[1], t[2]});
     }
     if (!TilesFacesAsTheRule(crack, split.tets)) continue;
-    // With an inner crack the corner is on it: the crack spans from it to the face's points on
-    // the crack, through each edge inside the face's split joining two of them.
-    if (inner) {
-      const FacePoints& p = crack.points[c];
-      std::vector<VertexId> on_crack;
-      for (int j = 0; j < 3; ++j) {
-        if (p.corner_on_crack[j]) on_crack.push_back(p.corners[j]);
-        if (p.on_edge[j]) on_crack.push_back(*p.on_edge[j]);
-      }
-      if (p.inside) on_crack.push_back(*p.inside);
-      std::map<std::array<VertexId, 2>, int> edges;
-      for (const Triangle& t : crack.faces[c].triangles) {
-        for (int j = 0; j < 3; ++j) {
-          const VertexId a = t[j], b = t[(j + 1) % 3];
-          ++edges[Index(a) < Index(b) ? std::array<VertexId, 2>{a, b}
-                                      : std::array<VertexId, 2>{b, a}];
-        }
-      }
-      for (const auto& [e, count] : edges) {
-        if (count == 2 && Contains(on_crack, e[0]) && Contains(on_crack, e[1])) {
-          split.crack_faces.push_back({crack.corners[c], e[0], e[1]});
-        }
-      }
-    }
+    if (inner) split.crack_faces = FanCrackFaces(crack, c);
     AddWholeFaceCracks(crack, &split);
     return split;
   }

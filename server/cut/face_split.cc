@@ -91,14 +91,19 @@ FaceSplit SplitFaceTriangles(const FacePoints& p) {
 
 bool NeedsHub(const FacePoints& points) { return !points.inside && EdgePointCount(points) == 3; }
 
-FaceSplit SplitFace(const FacePoints& p) {
-  FaceSplit split = SplitFaceTriangles(p);
+std::vector<VertexId> PointsOnCrack(const FacePoints& p) {
   std::vector<VertexId> on_crack;
   for (int k = 0; k < 3; ++k) {
     if (p.corner_on_crack[k]) on_crack.push_back(p.corners[k]);
     if (p.on_edge[k]) on_crack.push_back(*p.on_edge[k]);
   }
   if (p.inside) on_crack.push_back(*p.inside);
+  return on_crack;
+}
+
+FaceSplit SplitFace(const FacePoints& p) {
+  FaceSplit split = SplitFaceTriangles(p);
+  const std::vector<VertexId> on_crack = PointsOnCrack(p);
   for (const std::array<VertexId, 3>& t : split.triangles) {
     if (std::all_of(t.begin(), t.end(), [&](VertexId v) {
           return std::find(on_crack.begin(), on_crack.end(), v) != on_crack.end();

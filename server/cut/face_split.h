@@ -51,4 +51,7 @@ struct FaceSplit {
 // The split of the face. Requires !NeedsHub(points).
 FaceSplit SplitFace(const FacePoints& points);
 
+// The face's points on the crack: its corners on the crack, its edge points and its inside point.
+std::vector<mesh::VertexId> PointsOnCrack(const FacePoints& points);
+
 }  // namespace kerf::cut
