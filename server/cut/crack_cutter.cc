@@ -466,9 +466,10 @@ void CrackCutter::CloseUnits(const std::vector<TetId>& units) {
     const auto it = open_.find(u);
     if (it == open_.end()) continue;
     for (const TetId p : it->second.pieces) owner_.erase(p);
-    open_.erase(it);
-    // Its apex, if it has one, is an ordinary vertex now.
+    // Its apex and opening points, if it has them, are ordinary vertices now.
     temporary_.erase(ApexPlace(u));
+    for (const FaceKey& key : it->second.openings) temporary_.erase(OpeningPlace(u, key));
+    open_.erase(it);
   }
 }
 

@@ -133,6 +133,8 @@ class CrackCutter {
     mesh::TetId source;         // the tissue's tet it came from
     std::vector<mesh::TetId> pieces;
     std::vector<FaceKey> crack;  // the crack faces its pieces hold
+    // Inner crack faces opened at a point in their middle (OpenShutFaces), by origins.
+    std::vector<FaceKey> openings;
   };
   // The blade's points in a tet it meets now.
   struct BladeIn {
@@ -152,10 +154,16 @@ class CrackCutter {
         snap_fraction_(std::max(options.snap_fraction, kMinSnapFraction)),
         min_temporary_height_(options.min_temporary_height) {}
 
-  // The place of an open tet's apex among the temporary points (faces' places have the high bit
-  // clear).
+  // The places of temporary points: a face's (its key's hash, the two high bits clear), an open
+  // tet's apex, and the point opening one of its crack faces.
+  static std::uint64_t FacePlace(const FaceKey& key) {
+    return absl::HashOf(mesh::Index(key[0]), mesh::Index(key[1]), mesh::Index(key[2])) >> 2;
+  }
   static std::uint64_t ApexPlace(mesh::TetId unit) {
     return (std::uint64_t{1} << 63) | mesh::Index(unit);
+  }
+  static std::uint64_t OpeningPlace(mesh::TetId unit, const FaceKey& key) {
+    return (std::uint64_t{1} << 62) | (absl::HashOf(mesh::Index(unit), FacePlace(key)) >> 2);
   }
   // A tet as the crack sees it: a live tet, or an open tet (by its id before it opened).
   mesh::TetId UnitOf(mesh::TetId t) const;
@@ -211,8 +219,17 @@ class CrackCutter {
   // vertices and forgets temporary points no split uses.
   void SplitUnits(std::vector<mesh::TetId> units,
                   const absl::flat_hash_map<mesh::TetId, BladeIn>& blade);
-  // Splits one unit; returns the origins whose parting may have changed.
-  std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade);
+  // Splits one unit, opening its crack faces in `to_open` and those it opened before (where the
+  // split still has them); returns the origins whose parting may have changed.
+  std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade,
+                                        std::span<const FaceKey> to_open = {});
+  // The open unit's inner crack faces that parting left shut: their two pieces use the same
+  // vertices (every corner lies on the crack's edge: the blade, the tip's path).
+  std::vector<FaceKey> ShutInnerCrackFaces(mesh::TetId unit) const;
+  // Opens the inner crack face `key` of `split` (if it has it) at a point in its middle, on
+  // `corners` (the unit's origins).
+  bool OpenAtItsMiddle(mesh::TetId unit, const mesh::TetVertices& corners, const FaceKey& key,
+                       CrackSplit* split);
   // The unit's case of the paper's Table 1 with the blade in it (0: none of the eleven).
   int TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const;
   // Whether the pieces (live tets) are the split's tets, up to copies and orientation.

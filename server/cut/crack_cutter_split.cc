@@ -14,29 +14,41 @@ using mesh::VertexId;
 
 constexpr VertexId kNoVertex{0xffffffffu};
 
-// Places of temporary points: a face's (its key's hash, high bit clear) or an open tet's apex.
-std::uint64_t FacePlace(const FaceKey& key) {
-  return absl::HashOf(Index(key[0]), Index(key[1]), Index(key[2])) >> 1;
-}
-
 }  // namespace
 
 void CrackCutter::SplitUnits(std::vector<TetId> units,
                              const absl::flat_hash_map<TetId, BladeIn>& blade) {
   std::sort(units.begin(), units.end());
   units.erase(std::unique(units.begin(), units.end()), units.end());
+  const auto blade_in = [&](TetId u) {
+    const auto in = blade.find(u);
+    return in == blade.end() ? nullptr : &in->second;
+  };
   std::vector<VertexId> origins;
   for (const TetId u : units) {
     // A unit named at the last pose may have been renamed by parting since (its tets now are
     // units of their own, found through their points if they have any).
     if (!open_.contains(u) && !mesh_->IsAlive(u)) continue;
-    const auto in = blade.find(u);
-    const std::vector<VertexId> used = SplitUnit(u, in == blade.end() ? nullptr : &in->second);
+    if (const BladeIn* in = blade_in(u)) {
+      const int table_case = TableCase(CornersOf(u), *in);
+      ++statistics_.poses_by_case[table_case];
+      ++last_pose_.tets_by_case[table_case];
+    }
+    const std::vector<VertexId> used = SplitUnit(u, blade_in(u));
     origins.insert(origins.end(), used.begin(), used.end());
   }
-  std::sort(origins.begin(), origins.end());
-  origins.erase(std::unique(origins.begin(), origins.end()), origins.end());
   Repart(origins);
+  // Crack faces parting left shut open at a point of their own, so the crack opens up to the
+  // blade and the tip's path however thin it is in a tet.
+  origins.clear();
+  for (const TetId u : units) {
+    if (!open_.contains(u) || !blade_in(u)) continue;
+    const std::vector<FaceKey> shut = ShutInnerCrackFaces(u);
+    if (shut.empty()) continue;
+    const std::vector<VertexId> used = SplitUnit(u, blade_in(u), shut);
+    origins.insert(origins.end(), used.begin(), used.end());
+  }
+  if (!origins.empty()) Repart(origins);
   // Temporary points no split uses this pose go.
   for (auto it = temporary_.begin(); it != temporary_.end();) {
     if (!temporary_used_.contains(it->first) && parting_.RemoveIfUnused(mesh_, it->second)) {
@@ -67,13 +79,9 @@ bool CrackCutter::SamePieces(const std::vector<TetId>& pieces,
   return now == then;
 }
 
-std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
+std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
+                                             std::span<const FaceKey> to_open) {
   const mesh::TetVertices corners = CornersOf(unit);
-  if (blade != nullptr) {
-    const int table_case = TableCase(corners, *blade);
-    ++statistics_.poses_by_case[table_case];
-    ++last_pose_.tets_by_case[table_case];
-  }
   const TetCrack crack = MakeTetCrack(corners, PointsOf(corners, blade));
   const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
   std::optional<CrackSplit> split = SplitWithoutApex(crack, rest);
@@ -94,6 +102,18 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
   // between its points and the crack stay open until it moves on.
   if (blade == nullptr) ReleaseWalledInPieces(crack, &*split);
+  // While the blade is in the unit, crack faces parting leaves shut are opened at their middle
+  // (SplitUnits) and stay so as the blade moves. A split for good opens none: the crack's edge has
+  // moved on, and the faces it leaves shut open by parting, or at the end (OpenShutCrackFaces).
+  std::vector<FaceKey> openings;
+  if (was_open && blade != nullptr) {
+    for (const FaceKey& key : open_.at(unit).openings) {
+      if (OpenAtItsMiddle(unit, corners, key, &*split)) openings.push_back(key);
+    }
+  }
+  for (const FaceKey& key : to_open) {
+    if (OpenAtItsMiddle(unit, corners, key, &*split)) openings.push_back(key);
+  }
   std::vector<FaceKey> crack_faces;
   for (const auto& f : split->crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
   std::sort(crack_faces.begin(), crack_faces.end());
@@ -126,8 +146,41 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade) {
   const TetId source = was_open ? open_.at(unit).source : SourceTet(unit);
   std::vector<TetId> pieces = Replace(unit, split->tets);
   for (const TetId p : pieces) owner_[p] = unit;
-  open_[unit] = {corners, source, std::move(pieces), std::move(crack_faces)};
+  open_[unit] = {corners, source, std::move(pieces), std::move(crack_faces), std::move(openings)};
   return to_part;
+}
+
+bool CrackCutter::OpenAtItsMiddle(TetId unit, const mesh::TetVertices& corners, const FaceKey& key,
+                                  CrackSplit* split) {
+  const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
+  const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
+  if (!HasInnerCrackFace(*split, key)) return false;
+  const VertexId point =
+      TemporaryVertex(OpeningPlace(unit, key), corners,
+                      geometry::BarycentricWeights(rest(corners[0]), rest(corners[1]),
+                                                   rest(corners[2]), rest(corners[3]), middle));
+  KERF_CHECK(OpenCrackFace(split, key, point));
+  return true;
+}
+
+std::vector<FaceKey> CrackCutter::ShutInnerCrackFaces(TetId unit) const {
+  const OpenTet& open = open_.at(unit);
+  std::vector<FaceKey> shut;
+  for (const FaceKey& key : open.crack) {
+    std::vector<mesh::TetVertices> sides;  // each piece's ids for the key's origins
+    for (const TetId p : open.pieces) {
+      std::array<bool, 3> found{};
+      mesh::TetVertices named = {key[0], key[1], key[2], key[0]};
+      for (const VertexId v : mesh_->tet(p)) {
+        for (int k = 0; k < 3; ++k) {
+          if (parting_.Origin(v) == key[k]) named[k] = v, found[k] = true;
+        }
+      }
+      if (found[0] && found[1] && found[2]) sides.push_back(named);
+    }
+    if (sides.size() == 2 && sides[0] == sides[1]) shut.push_back(key);
+  }
+  return shut;
 }
 
 int CrackCutter::TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const {

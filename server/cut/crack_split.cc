@@ -409,6 +409,43 @@ CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {
   return split;
 }
 
+namespace {
+
+bool HasAll(const TetVertices& t, const Triangle& face) {
+  return std::all_of(face.begin(), face.end(),
+                     [&](VertexId v) { return std::find(t.begin(), t.end(), v) != t.end(); });
+}
+
+}  // namespace
+
+bool HasInnerCrackFace(const CrackSplit& split, const Triangle& face) {
+  const Triangle key = Sorted(face);
+  return std::any_of(split.crack_faces.begin(), split.crack_faces.end(),
+                     [&](const Triangle& c) { return Sorted(c) == key; }) &&
+         std::count_if(split.tets.begin(), split.tets.end(),
+                       [&](const TetVertices& t) { return HasAll(t, face); }) == 2;
+}
+
+bool OpenCrackFace(CrackSplit* split, const Triangle& face, VertexId point) {
+  if (!HasInnerCrackFace(*split, face)) return false;
+  const Triangle key = Sorted(face);
+  std::erase_if(split->crack_faces, [&](const Triangle& c) { return Sorted(c) == key; });
+  std::vector<VertexId> off;  // the two tets' corners off the face
+  std::erase_if(split->tets, [&](const TetVertices& t) {
+    if (!HasAll(t, face)) return false;
+    for (const VertexId v : t) {
+      if (std::find(key.begin(), key.end(), v) == key.end()) off.push_back(v);
+    }
+    return true;
+  });
+  for (int e = 0; e < 3; ++e) {
+    const VertexId a = key[e], b = key[(e + 1) % 3];
+    split->crack_faces.push_back({point, a, b});
+    for (const VertexId o : off) split->tets.push_back({point, a, b, o});
+  }
+  return true;
+}
+
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split) {
   const auto on_a_face = [&](const Triangle& f) {
     for (int k = 0; k < 4; ++k) {

@@ -64,6 +64,16 @@ CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
 // points at once). Each such group joins one group beside it: the crack faces between them go.
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split);
 
+// Opens the split's inner crack face `face` (a face of two of its tets; its vertices in any
+// order) at `point`, a new vertex strictly inside it: the two tets become three each, from
+// `point` over the face's edges, and the face three crack faces through `point`. A crack face
+// none of whose vertices the crack parts (all lie on the crack's edge: the blade, the tip's
+// path) stays shut; `point`, on the crack with one side of it on each side, is parted, so the
+// crack opens there. False (and nothing changed) if `face` is not such a face.
+bool HasInnerCrackFace(const CrackSplit& split, const std::array<mesh::VertexId, 3>& face);
+bool OpenCrackFace(CrackSplit* split, const std::array<mesh::VertexId, 3>& face,
+                   mesh::VertexId point);
+
 // The barycentric weights of a cone's apex for good. Where the crack has an inner part: of points
 // on the plane that fits its trace points (their middle, the tet's middle projected on that
 // plane, points between, then a short pattern search on the plane), each pulled inside along the

@@ -437,5 +437,80 @@ TEST(CrackSplit, TheConesApexStaysOnTheCrack) {
             SmallestConeAngle(tet, crack, PulledInside(tet.Weights(middle))));
 }
 
+// A crack face opened at its middle: the pieces still tile the tet, the face is three crack
+// faces through the new point, and the point's pieces, joined through faces off the crack, are
+// two sides (one on each side of the face), so parting the point opens the face.
+TEST(CrackSplit, ACrackFaceOpenedAtItsMiddleHasTheCrackOnBothSidesOfItsPoint) {
+  OneTet tet;
+  tet.CutEdge(3, 0, 0.7);
+  tet.CutEdge(3, 1, 0.5);
+  tet.CutEdge(3, 2, 0.6);
+  const TetCrack crack = tet.Crack();
+  const auto rest = tet.RestOf();
+  CrackSplit split = SplitAsCone(crack, tet.Apex(ConeApexWeights(crack, rest)));
+  ASSERT_FALSE(split.crack_faces.empty());
+  const Triangle face = split.crack_faces.front();
+  Eigen::Vector4d middle = Eigen::Vector4d::Zero();
+  for (const VertexId v : face) middle += tet.Weights(tet.Rest(v)) / 3;
+  const VertexId point = tet.Apex(middle);
+  const std::size_t tets = split.tets.size(), faces = split.crack_faces.size();
+
+  ASSERT_TRUE(OpenCrackFace(&split, face, point));
+
+  ExpectTiles(tet, crack, split);
+  EXPECT_EQ(split.tets.size(), tets + 4);
+  EXPECT_EQ(split.crack_faces.size(), faces + 2);
+  EXPECT_EQ(std::count_if(split.crack_faces.begin(), split.crack_faces.end(),
+                          [&](const Triangle& c) { return Sorted(c) == Sorted(face); }),
+            0);
+  std::set<Triangle> cracked;
+  for (const Triangle& c : split.crack_faces) cracked.insert(Sorted(c));
+  std::vector<std::size_t> star;
+  for (std::size_t i = 0; i < split.tets.size(); ++i) {
+    const mesh::TetVertices& t = split.tets[i];
+    if (std::find(t.begin(), t.end(), point) != t.end()) star.push_back(i);
+  }
+  ASSERT_EQ(star.size(), 6u);
+  // Sides: pieces of the star joined through a face at the point off the crack.
+  std::vector<int> side(star.size(), -1);
+  int sides = 0;
+  for (std::size_t s = 0; s < star.size(); ++s) {
+    if (side[s] >= 0) continue;
+    side[s] = sides++;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (std::size_t a = 0; a < star.size(); ++a) {
+        for (std::size_t b = 0; b < star.size(); ++b) {
+          if (side[a] != side[s] || side[b] >= 0) continue;
+          std::vector<VertexId> shared;
+          for (const VertexId v : split.tets[star[a]]) {
+            const mesh::TetVertices& other = split.tets[star[b]];
+            if (std::find(other.begin(), other.end(), v) != other.end()) shared.push_back(v);
+          }
+          if (shared.size() == 3 && !cracked.contains(Sorted({shared[0], shared[1], shared[2]}))) {
+            side[b] = side[s], grew = true;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(sides, 2);
+}
+
+TEST(CrackSplit, OnlyAnInnerCrackFaceOpens) {
+  OneTet tet;
+  tet.CutEdge(3, 0, 0.7);
+  tet.CutEdge(3, 1, 0.5);
+  tet.CutEdge(3, 2, 0.6);
+  const TetCrack crack = tet.Crack();
+  CrackSplit split = SplitAsCone(crack, tet.Apex(Eigen::Vector4d(0.3, 0.2, 0.2, 0.3)));
+  const CrackSplit before = split;
+  const VertexId point = tet.Apex(Eigen::Vector4d::Constant(0.25));
+  const mesh::TetVertices& c = tet.corners();
+  EXPECT_FALSE(OpenCrackFace(&split, {c[0], c[1], c[2]}, point));  // a face of the tet
+  EXPECT_EQ(split.tets, before.tets);
+  EXPECT_EQ(split.crack_faces, before.crack_faces);
+}
+
 }  // namespace
 }  // namespace kerf::cut
