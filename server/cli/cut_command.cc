@@ -143,8 +143,13 @@ class PoseChecks {
     }
     double covered = 1;
     if (!withdrawn && fidelity_ != nullptr && i > 0) {
-      covered = fidelity_->StepCoverage(fidelity_->FindCrack(*m_), i - 1);
+      const lab::CrackFaces crack = fidelity_->FindCrack(*m_);
+      covered = fidelity_->StepCoverage(crack, i - 1);
       if (covered < 1) report_->set_poses_not_covered(report_->poses_not_covered() + 1);
+      if (fidelity_->StepCoverageBelowSurface(crack, i - 1) < 1) {
+        report_->set_poses_not_covered_below_surface(report_->poses_not_covered_below_surface() +
+                                                     1);
+      }
       report_->set_min_step_coverage(std::min(report_->min_step_coverage(), covered));
     }
     if (trace_ != nullptr) Trace(i, valid, crack_area, covered);
@@ -415,7 +420,8 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
                          report->unpaired_crack_faces(), " unpaired crack faces")
           : "",
       options.check == CheckWhen::kEveryPose
-          ? absl::StrCat("; ", report->poses_not_covered(), " poses not covered at once")
+          ? absl::StrCat("; ", report->poses_not_covered(), " poses not covered at once (",
+                         report->poses_not_covered_below_surface(), " below the surface)")
           : "",
       "; wrote ", (**out_arg)[0], "\n");
 }

@@ -35,8 +35,8 @@ struct Row {
   double min_coverage = 1, coverage = 0, min_below = 1, below = 0, min_dihedral = 180, seconds = 0;
   std::size_t samples = 0, surface_samples = 0;
   std::size_t made = 0;  // tets the cut made, alive at the end
-  std::size_t poses = 0, lagging = 0, overcut = 0, unpaired = 0, cut_tets = 0, new_tets = 0,
-              slivers = 0, under_one = 0, invalid = 0;
+  std::size_t poses = 0, lagging = 0, lagging_below = 0, overcut = 0, unpaired = 0, cut_tets = 0,
+              new_tets = 0, slivers = 0, under_one = 0, invalid = 0;
 };
 
 void Add(const kerf::v1::CutReport& r, Row* row) {
@@ -51,6 +51,7 @@ void Add(const kerf::v1::CutReport& r, Row* row) {
   row->seconds += r.cut_seconds();
   row->poses += r.poses();
   row->lagging += r.poses_not_covered();
+  row->lagging_below += r.poses_not_covered_below_surface();
   row->overcut += r.overcut_faces();
   row->unpaired += r.unpaired_crack_faces();
   row->cut_tets += r.cut_tets();
@@ -129,7 +130,7 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
       check == CheckWhen::kEveryPose ? "every pose" : "at the end",
       "\n\n| mesh | family | mode | coverage min / mean | at the surface | below it min / mean | "
       "overcut faces | unpaired | new per cut | min dihedral (deg) | new tets under 5 deg | "
-      "under 1 deg | poses lagging | invalid | us per pose |\n"
+      "under 1 deg | poses lagging (below the surface) | invalid | us per pose |\n"
       "|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     absl::StrAppendFormat(
@@ -143,7 +144,9 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
         r.new_tets > 0 ? absl::StrFormat("%.2f", r.min_dihedral) : std::string("-"), r.slivers,
         r.made, r.under_one,
         check == CheckWhen::kEveryPose
-            ? absl::StrFormat("%.1f%%", 100.0 * r.lagging / std::max<std::size_t>(r.poses, 1))
+            ? absl::StrFormat("%.1f%% (%.1f%%)",
+                              100.0 * r.lagging / std::max<std::size_t>(r.poses, 1),
+                              100.0 * r.lagging_below / std::max<std::size_t>(r.poses, 1))
             : std::string("-"),
         r.invalid, 1e6 * r.seconds / std::max<std::size_t>(r.poses, 1));
   }

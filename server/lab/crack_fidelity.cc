@@ -305,6 +305,16 @@ double FidelityMeter::StepCoverage(const CrackFaces& crack, std::size_t k) const
   return static_cast<double>(covered) / static_cast<double>(end - begin);
 }
 
+double FidelityMeter::StepCoverageBelowSurface(const CrackFaces& crack, std::size_t k) const {
+  std::size_t below = 0, covered = 0;
+  for (std::size_t i = StepBegin(k); i < step_end_[k]; ++i) {
+    if (step_samples_[i].at_surface) continue;
+    ++below;
+    covered += Covered(crack, step_samples_[i]) ? 1 : 0;
+  }
+  return below == 0 ? 1 : static_cast<double>(covered) / static_cast<double>(below);
+}
+
 std::size_t FidelityMeter::crossed_tets() const {
   std::vector<std::uint32_t> tets;
   for (const Piece& p : pieces_) tets.push_back(p.tet);

@@ -96,6 +96,9 @@ class FidelityMeter {
   // The share of step k's samples that the crack covers (1 for a step that swept nothing
   // inside the tissue).
   double StepCoverage(const CrackFaces& crack, std::size_t k) const;
+  // The same for step k's samples below the surface (farther than the tolerance from the
+  // tissue's boundary; 1 if it has none).
+  double StepCoverageBelowSurface(const CrackFaces& crack, std::size_t k) const;
   std::size_t StepSamples(std::size_t k) const { return step_end_[k] - StepBegin(k); }
 
   std::size_t steps() const { return step_end_.size(); }

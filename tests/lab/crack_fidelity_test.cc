@@ -121,6 +121,19 @@ TEST(FidelityMeter, SamplesNearTheSurfaceAreCountedApart) {
   EXPECT_EQ(cut.coverage_below_surface, 1);
 }
 
+// A step's lag below the surface judges its samples deeper than a quarter edge only: a blade a
+// fifth of an edge inside the tissue's face has none, and its uncut steps lag at the surface.
+TEST(FidelityMeter, AStepsLagBelowTheSurfaceLeavesOutItsSamplesAtTheSurface) {
+  const CrackFaces uncut = MeterFor(SweepAt(2, 12)).FindCrack(Tissue());
+  const FidelityMeter grazing = MeterFor(SweepAt(0.2, 12));
+  const FidelityMeter deep = MeterFor(SweepAt(2, 12));
+  ASSERT_GT(grazing.StepSamples(5), 0u);
+  EXPECT_EQ(grazing.StepCoverage(uncut, 5), 0);
+  EXPECT_EQ(grazing.StepCoverageBelowSurface(uncut, 5), 1);
+  EXPECT_EQ(deep.StepCoverageBelowSurface(uncut, 5), 0);
+  EXPECT_EQ(deep.StepCoverageBelowSurface(deep.FindCrack(PartedAt(2)), 5), 1);
+}
+
 TEST(FidelityMeter, AHalfCrackCoversAboutHalf) {
   const FidelityMeter meter = MeterFor(SweepAt(2, 12));
   const Fidelity f = meter.Measure(meter.FindCrack(PartedAt(2, /*whole=*/false)));
