@@ -16,13 +16,16 @@
 //
 // The tets that share points form groups. Progressive (the default): after every pose, each tet
 // with new points, and each the blade is or was in, is split at once from its own corners (an
-// open tet); while the blade is in it the blade's crossings of its faces are points too and the
-// crack reaches the blade (a cone from the tip, or from the middle of the blade's chord), the
-// same points moving with the blade. A group closes once the blade meets none of its tets: their
-// pieces are then tets of their own. Deferred: a group splits once the blade meets none of its
-// tets. Either way, withdrawing the blade makes its
-// crossings of faces points where the crack ends, and after every split the vertices of the
-// crack are parted where it separates their tets.
+// open tet); while the blade is in it the blade's crossings of its faces, and of the edges it
+// lies across (sweeping in their plane, or its tip on them), are points too and the crack
+// reaches the blade (a cone from the tip, or from the middle of the blade's chord), the same
+// points moving with the blade; a crack face there none of whose corners parting separates
+// (all on the crack's edge: the blade, the tip's path) opens at a point in its middle. An edge
+// point the blade leaves becomes a point for good where it was last. A group closes once the blade
+// meets none of its tets: their pieces are then tets of their own. Deferred: a group splits once
+// the blade meets none of its tets. Either way, withdrawing the blade makes its crossings of faces
+// points where the crack ends, and after every split the vertices of the crack are parted where it
+// separates their tets.
 #pragma once
 
 #include <optional>
@@ -66,6 +69,10 @@ inline constexpr double kDefaultCrackSnapFraction = 0.2;
 // the face's edges; temporary points are not snapped, so the crack follows the blade closely
 // (their thin pieces last only while the blade is in their tet).
 inline constexpr double kMinTemporaryWeight = 1e-3;
+// The blade passes through an edge (lying in its plane, or its tip on it) when it comes this
+// near it, in the edge's length: the blade sweeping in the plane of faces crosses none of their
+// edges, and its crossings of them are temporary points so the crack follows it there too.
+inline constexpr double kInPlaneTolerance = 1e-9;
 
 struct CrackCutterOptions {
   CutMode mode = CutMode::kProgressive;
@@ -140,6 +147,9 @@ class CrackCutter {
   struct BladeIn {
     // Crossings of faces with no point for good, barycentric: temporary points.
     absl::flat_hash_map<FaceKey, Eigen::Vector3d, FaceKeyHash> faces;
+    // Edges with no point for good that the blade passes through (lying in their plane, or its
+    // tip on them), by the fraction from the lower id: temporary points.
+    absl::flat_hash_map<EdgeKey, double> edges;
     std::vector<FaceKey> crossed;  // every face the blade crosses
     Eigen::Vector4d apex;          // the crack's point inside: the tip, or the chord's middle
     bool tip_inside = false;
@@ -155,7 +165,7 @@ class CrackCutter {
         min_temporary_height_(options.min_temporary_height) {}
 
   // The places of temporary points: a face's (its key's hash, the two high bits clear), an open
-  // tet's apex, and the point opening one of its crack faces.
+  // tet's apex, the point opening one of its crack faces, and an edge's.
   static std::uint64_t FacePlace(const FaceKey& key) {
     return absl::HashOf(mesh::Index(key[0]), mesh::Index(key[1]), mesh::Index(key[2])) >> 2;
   }
@@ -164,6 +174,9 @@ class CrackCutter {
   }
   static std::uint64_t OpeningPlace(mesh::TetId unit, const FaceKey& key) {
     return (std::uint64_t{1} << 62) | (absl::HashOf(mesh::Index(unit), FacePlace(key)) >> 2);
+  }
+  static std::uint64_t EdgePlace(EdgeKey key) {
+    return (std::uint64_t{3} << 62) | (absl::HashOf(key) >> 2);
   }
   // A tet as the crack sees it: a live tet, or an open tet (by its id before it opened).
   mesh::TetId UnitOf(mesh::TetId t) const;
@@ -207,13 +220,24 @@ class CrackCutter {
     double mean_edge = 0, scale = 0;
   };
   Lengths LengthsOf(std::span<const mesh::VertexId> vertices) const;
-  // The blade's crossings of faces at a pose, by face.
-  using BladeFaceCrossings =
-      absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>;
-  // The blade's points in the unit, if the blade at `pose` meets it (crosses a face, or has an
-  // end inside); `faces` keeps the crossings found, for the unit across each face.
+  // The blade's crossings of faces and edges at a pose, by face and edge (origins).
+  struct BladeCrossingsAt {
+    absl::flat_hash_map<FaceKey, std::optional<geometry::SegmentTriangleCrossing>, FaceKeyHash>
+        faces;
+    absl::flat_hash_map<EdgeKey, std::optional<double>> edges;
+  };
+  // The blade's points in the unit, if the blade at `pose` meets it (crosses a face, passes
+  // through an edge, or has an end inside); `found` keeps the crossings, for the units sharing
+  // each face and edge, so they agree on them.
   std::optional<BladeIn> BladeInUnit(mesh::TetId unit, const BladePose& pose,
-                                     BladeFaceCrossings* faces) const;
+                                     BladeCrossingsAt* found) const;
+  // The units the blade at `pose` meets, with its points in each.
+  absl::flat_hash_map<mesh::TetId, BladeIn> BladeUnitsAt(const BladePose& pose) const;
+  // Progressive: a temporary edge point the blade at the new pose no longer makes (it left the
+  // edge's plane, or the edge behind) becomes a point for good where it was last, snapped as
+  // any crossing: what was cut stays cut.
+  void KeepEdgePointsLeft(const absl::flat_hash_map<mesh::TetId, BladeIn>& blade,
+                          std::vector<mesh::TetId>* touched);
 
   // Splits the units (for good, or temporarily where `blade` has them), then parts the crack's
   // vertices and forgets temporary points no split uses.
@@ -299,7 +323,8 @@ class CrackCutter {
   absl::flat_hash_map<FaceKey, int, FaceKeyHash> crack_;  // by origins, with how many mark it
   absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;
-  std::vector<mesh::TetId> blade_units_;  // the units the blade was in at the last pose
+  std::vector<mesh::TetId> blade_units_;              // the units the blade was in at the last pose
+  absl::flat_hash_map<EdgeKey, double> blade_edges_;  // its temporary edge points then
   absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;  // temporary piece -> its open tet
   // Temporary points by place (a face's key hash, or an open tet's id), and those used this pose.
   absl::flat_hash_map<std::uint64_t, mesh::VertexId> temporary_;

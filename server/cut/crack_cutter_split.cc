@@ -210,9 +210,20 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
   for (int k = 0; k < 4; ++k) {
     FacePoints& p = points[k];
     for (int j = 0; j < 3; ++j) p.corners[j] = corners[mesh::kTetFaces[k][j]];
+    bool temporary = false;  // a point on its edges is
     for (int j = 0; j < 3; ++j) {
       const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
-      if (edge_points_.contains(MakeEdgeKey(a, b))) p.on_edge[j] = EdgePointVertex(a, b);
+      const EdgeKey edge = MakeEdgeKey(a, b);
+      if (edge_points_.contains(edge)) {
+        p.on_edge[j] = EdgePointVertex(a, b);
+      } else if (const auto at =
+                     blade ? blade->edges.find(edge) : decltype(blade->edges)::const_iterator{};
+                 blade != nullptr && at != blade->edges.end()) {
+        const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
+        p.on_edge[j] = TemporaryVertex(EdgePlace(edge), {low, high, low, low},
+                                       {1 - at->second, at->second, 0, 0});
+        temporary = true;
+      }
       p.corner_on_crack[j] = on_crack_.contains(p.corners[j]);
     }
     const FaceKey key = MakeFaceKey(p.corners[0], p.corners[1], p.corners[2]);
@@ -225,19 +236,27 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
       p.inside =
           TemporaryVertex(FacePlace(key), {key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0});
     } else if (NeedsHub(p)) {
-      // The hub: the middle of the three edge points, on the face's vertices in key order.
+      // The hub: the middle of the three edge points, on the face's vertices in key order;
+      // temporary if one of them is.
       Eigen::Vector3d weights = Eigen::Vector3d::Zero();
       for (int j = 0; j < 3; ++j) {
         const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
-        const EdgePoint& e = edge_points_.at(MakeEdgeKey(a, b));
+        const EdgeKey edge = MakeEdgeKey(a, b);
+        const double fraction =
+            edge_points_.contains(edge) ? edge_points_.at(edge).fraction : blade->edges.at(edge);
         const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
         for (int i = 0; i < 3; ++i) {
-          if (key[i] == low) weights[i] += (1 - e.fraction) / 3;
-          if (key[i] == high) weights[i] += e.fraction / 3;
+          if (key[i] == low) weights[i] += (1 - fraction) / 3;
+          if (key[i] == high) weights[i] += fraction / 3;
         }
       }
-      face_points_[key] = {weights};
-      p.inside = FacePointVertex(key);
+      if (temporary) {
+        p.inside = TemporaryVertex(FacePlace(key), {key[0], key[1], key[2], key[0]},
+                                   {weights[0], weights[1], weights[2], 0});
+      } else {
+        face_points_[key] = {weights};
+        p.inside = FacePointVertex(key);
+      }
     }
   }
   return points;
