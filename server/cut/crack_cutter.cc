@@ -366,8 +366,8 @@ absl::flat_hash_map<TetId, CrackCutter::BladeIn> CrackCutter::BladeUnitsAt(
   while (!through.empty()) {
     const EdgeKey key = through.back();
     through.pop_back();
-    for (const TetId u : UnitsAround({VertexId(static_cast<std::uint32_t>(key >> 32)),
-                                      VertexId(static_cast<std::uint32_t>(key))})) {
+    const auto [low, high] = EdgeEnds(key);
+    for (const TetId u : UnitsAround({low, high})) {
       if (blade.contains(u)) continue;
       std::optional<BladeIn> in = BladeInUnit(u, pose, &at);
       KERF_CHECK(in.has_value());  // it has the edge's point at least
@@ -389,8 +389,8 @@ void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& 
   std::sort(left.begin(), left.end());  // the same points whatever the map's order
   for (const auto& [key, fraction] : left) {
     std::vector<TetId> around;
-    RecordEdgeCrossing(VertexId(static_cast<std::uint32_t>(key >> 32)),
-                       VertexId(static_cast<std::uint32_t>(key)), fraction, &around);
+    const auto [low, high] = EdgeEnds(key);
+    RecordEdgeCrossing(low, high, fraction, &around);
     Join(around);
     touched->insert(touched->end(), around.begin(), around.end());
   }

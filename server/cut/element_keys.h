@@ -17,6 +17,11 @@ inline EdgeKey MakeEdgeKey(mesh::VertexId a, mesh::VertexId b) {
   const std::uint64_t hi = std::max(mesh::Index(a), mesh::Index(b));
   return lo << 32 | hi;
 }
+// The edge's vertices, the smaller id first.
+inline std::array<mesh::VertexId, 2> EdgeEnds(EdgeKey key) {
+  return {mesh::VertexId(static_cast<std::uint32_t>(key >> 32)),
+          mesh::VertexId(static_cast<std::uint32_t>(key))};
+}
 
 // A face by its three vertices, smallest id first.
 using FaceKey = std::array<mesh::VertexId, 3>;
