@@ -175,6 +175,36 @@ TEST(CrackCutter, TheCrackFollowsTheBladeProgressively) {
   EXPECT_GE(meter.Measure(meter.FindCrack(m)).coverage, 0.99);
 }
 
+// Steps of a progressive cut that swept the tissue, and those covered as they were made: every
+// sample of the step, or those below the surface.
+struct StepsCovered {
+  int steps = 0, covered = 0, covered_below_surface = 0;
+  double final_coverage_below_surface = 0;  // once withdrawn
+};
+
+// Cuts `tissue` progressively along `poses`, the mesh valid after every pose and withdrawn.
+StepsCovered CutStepByStep(const TetMesh& tissue, const std::vector<BladePose>& poses) {
+  TetMesh m = tissue;
+  CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m));
+  lab::FidelityMeter meter(tissue);
+  StepsCovered result;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_TRUE(cutter.ApplyPose(poses[i]).ok());
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << "pose " << i << ": " << mesh::ValidateMesh(m);
+    if (i == 0) continue;
+    const std::size_t step = meter.AddStep(poses[i - 1], poses[i]);
+    if (meter.StepSamples(step) == 0) continue;
+    const lab::CrackFaces crack = meter.FindCrack(m);
+    ++result.steps;
+    result.covered += meter.StepCoverage(crack, step) == 1 ? 1 : 0;
+    result.covered_below_surface += meter.StepCoverageBelowSurface(crack, step) == 1 ? 1 : 0;
+  }
+  cutter.Finish();
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
+  result.final_coverage_below_surface = meter.Measure(meter.FindCrack(m)).coverage_below_surface;
+  return result;
+}
+
 // Progressive, the tip inside the tissue just off a layer of vertices (which it snaps onto the
 // crack): every point of the crack in the tets by the tip's path lies on the crack's edge (the
 // tip's path, the blade), so parting opens nothing there, and the crack opens up to the blade
@@ -185,25 +215,14 @@ TEST(CrackCutter, TheCrackOpensUpToATipInside) {
   for (const double x : {2.05, 2.1}) {
     for (const double tip : {0.95, 0.98, 1.02}) {
       SCOPED_TRACE(::testing::Message() << "x " << x << ", tip at " << tip);
-      TetMesh m = bar;
-      CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m));
-      lab::FidelityMeter meter(bar);
       std::vector<BladePose> poses;
-      int steps = 0, covered = 0;
       for (int i = 0; i <= 40; ++i) {
         const double y = -0.5 + 0.06 * i;  // a slanted blade, a sixteenth of an edge per pose
         poses.push_back({0.01 * i, {x, y, tip}, {x + 0.1, y + 0.2, 2.5}});
-        ASSERT_TRUE(cutter.ApplyPose(poses.back()).ok());
-        ASSERT_TRUE(mesh::FindMeshDefects(m).empty())
-            << "pose " << i << ": " << mesh::ValidateMesh(m);
-        if (i == 0) continue;
-        const std::size_t step = meter.AddStep(poses[i - 1], poses[i]);
-        if (meter.StepSamples(step) == 0) continue;
-        ++steps;
-        covered += meter.StepCoverage(meter.FindCrack(m), step) == 1 ? 1 : 0;
       }
-      EXPECT_GT(steps, 30);
-      EXPECT_EQ(covered, steps);
+      const StepsCovered cut = CutStepByStep(bar, poses);
+      EXPECT_GT(cut.steps, 30);
+      EXPECT_EQ(cut.covered, cut.steps);
     }
   }
 }
@@ -218,28 +237,15 @@ TEST(CrackCutter, TheCrackFollowsABladeInThePlaneOfFaces) {
   const TetMesh bar = *mesh::MakeBoxLattice({.cells_x = 4, .cells_y = 4, .cells_z = 2});
   for (const double tip : {0.5, 0.7, 1.5}) {
     SCOPED_TRACE(::testing::Message() << "tip at " << tip);
-    TetMesh m = bar;
-    CrackCutter cutter = *CrackCutter::Create(&m, 1, LimitsFor(m));
-    lab::FidelityMeter meter(bar);
     std::vector<BladePose> poses;
-    int steps = 0, covered = 0;
     for (int i = 0; i <= 40; ++i) {
       const double y = -0.5 + 0.06 * i;
       poses.push_back({0.01 * i, {2, y, tip}, {2, y + 0.3, 2.5}});
-      ASSERT_TRUE(cutter.ApplyPose(poses.back()).ok());
-      ASSERT_TRUE(mesh::FindMeshDefects(m).empty())
-          << "pose " << i << ": " << mesh::ValidateMesh(m);
-      if (i == 0) continue;
-      const std::size_t step = meter.AddStep(poses[i - 1], poses[i]);
-      if (meter.StepSamples(step) == 0) continue;
-      ++steps;
-      covered += meter.StepCoverageBelowSurface(meter.FindCrack(m), step) == 1 ? 1 : 0;
     }
-    EXPECT_GT(steps, 30);
-    EXPECT_EQ(covered, steps);
-    cutter.Finish();
-    EXPECT_TRUE(mesh::FindMeshDefects(m).empty());
-    EXPECT_GE(meter.Measure(meter.FindCrack(m)).coverage_below_surface, 0.99);
+    const StepsCovered cut = CutStepByStep(bar, poses);
+    EXPECT_GT(cut.steps, 30);
+    EXPECT_EQ(cut.covered_below_surface, cut.steps);
+    EXPECT_GE(cut.final_coverage_below_surface, 0.99);
   }
 }
 

@@ -412,14 +412,20 @@ TEST(CrackSplit, AConeOnlyMatchingItsFacesHasItsRoundestApex) {
             SmallestConeAngle(tet, crack, Eigen::Vector4d::Constant(0.25)) + 1);
 }
 
-// A crack across the tet (corner 3 cut off by a tilted plane): the apex stays on the crack's
-// plane, inside by the margin, and its cone is no flatter than the one from the middle of the
-// trace points.
-TEST(CrackSplit, TheConesApexStaysOnTheCrack) {
+// Corner 3 cut off by a tilted plane: a crack across the tet.
+OneTet CornerThreeCutOff() {
   OneTet tet;
   tet.CutEdge(3, 0, 0.7);
   tet.CutEdge(3, 1, 0.5);
   tet.CutEdge(3, 2, 0.6);
+  return tet;
+}
+
+// A crack across the tet (corner 3 cut off by a tilted plane): the apex stays on the crack's
+// plane, inside by the margin, and its cone is no flatter than the one from the middle of the
+// trace points.
+TEST(CrackSplit, TheConesApexStaysOnTheCrack) {
+  OneTet tet = CornerThreeCutOff();
   const TetCrack crack = tet.Crack();
   ASSERT_TRUE(HasInnerCrack(crack));
   const Eigen::Vector4d chosen = ConeApexWeights(crack, tet.RestOf());
@@ -441,10 +447,7 @@ TEST(CrackSplit, TheConesApexStaysOnTheCrack) {
 // faces through the new point, and the point's pieces, joined through faces off the crack, are
 // two sides (one on each side of the face), so parting the point opens the face.
 TEST(CrackSplit, ACrackFaceOpenedAtItsMiddleHasTheCrackOnBothSidesOfItsPoint) {
-  OneTet tet;
-  tet.CutEdge(3, 0, 0.7);
-  tet.CutEdge(3, 1, 0.5);
-  tet.CutEdge(3, 2, 0.6);
+  OneTet tet = CornerThreeCutOff();
   const TetCrack crack = tet.Crack();
   const auto rest = tet.RestOf();
   CrackSplit split = SplitAsCone(crack, tet.Apex(ConeApexWeights(crack, rest)));
@@ -498,10 +501,7 @@ TEST(CrackSplit, ACrackFaceOpenedAtItsMiddleHasTheCrackOnBothSidesOfItsPoint) {
 }
 
 TEST(CrackSplit, OnlyAnInnerCrackFaceOpens) {
-  OneTet tet;
-  tet.CutEdge(3, 0, 0.7);
-  tet.CutEdge(3, 1, 0.5);
-  tet.CutEdge(3, 2, 0.6);
+  OneTet tet = CornerThreeCutOff();
   const TetCrack crack = tet.Crack();
   CrackSplit split = SplitAsCone(crack, tet.Apex(Eigen::Vector4d(0.3, 0.2, 0.2, 0.3)));
   const CrackSplit before = split;
