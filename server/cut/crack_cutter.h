@@ -175,6 +175,10 @@ class CrackCutter {
   static std::uint64_t OpeningPlace(mesh::TetId unit, const FaceKey& key) {
     return (std::uint64_t{1} << 62) | (absl::HashOf(mesh::Index(unit), FacePlace(key)) >> 2);
   }
+  // The point opening a crack face in a face between two units, the same for both.
+  static std::uint64_t FaceOpeningPlace(const FaceKey& key) {
+    return OpeningPlace(mesh::TetId(0xffffffffu), key);
+  }
   static std::uint64_t EdgePlace(EdgeKey key) {
     return (std::uint64_t{3} << 62) | (absl::HashOf(key) >> 2);
   }
@@ -247,13 +251,22 @@ class CrackCutter {
   // split still has them); returns the origins whose parting may have changed.
   std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade,
                                         std::span<const FaceKey> to_open = {});
-  // The open unit's inner crack faces that parting left shut: their two pieces use the same
-  // vertices (every corner lies on the crack's edge: the blade, the tip's path).
-  std::vector<FaceKey> ShutInnerCrackFaces(mesh::TetId unit) const;
-  // Opens the inner crack face `key` of `split` (if it has it) at a point in its middle, on
-  // `corners` (the unit's origins).
-  bool OpenAtItsMiddle(mesh::TetId unit, const mesh::TetVertices& corners, const FaceKey& key,
-                       CrackSplit* split);
+  // A crack face of an open unit that parting left shut (its sides use the same vertices: every
+  // corner lies on the crack's edge, the blade or the tip's path), and for one in a face of the
+  // unit the open unit beside it that must open it alike (none if it is inside the unit).
+  struct ShutFace {
+    FaceKey key;
+    std::optional<mesh::TetId> beside;
+  };
+  // Those of `unit` that can open: inside it, or in a face shared with a unit the blade is in
+  // (`blade`), which is split again with it.
+  std::vector<ShutFace> ShutCrackFaces(
+      mesh::TetId unit, const absl::flat_hash_map<mesh::TetId, BladeIn>& blade) const;
+  // Opens the crack face `key` of `split` (if it has it) at a point in its middle: for a face
+  // inside the unit, on the unit's corners; for one in a face of the unit, on that face's
+  // corners, the same point for the unit beside it. Returns CrackFaceSides (0: not opened).
+  int OpenAtItsMiddle(mesh::TetId unit, const TetCrack& crack, const FaceKey& key,
+                      CrackSplit* split);
   // The unit's case of the paper's Table 1 with the blade in it (0: none of the eleven).
   int TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const;
   // Whether the pieces (live tets) are the split's tets, up to copies and orientation.

@@ -40,12 +40,23 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
   Repart(origins);
   // Crack faces parting left shut open at a point of their own, so the crack opens up to the
   // blade and the tip's path however thin it is in a tet.
-  origins.clear();
+  absl::flat_hash_map<TetId, std::vector<FaceKey>> shut;
   for (const TetId u : units) {
     if (!open_.contains(u) || !blade_in(u)) continue;
-    const std::vector<FaceKey> shut = ShutInnerCrackFaces(u);
-    if (shut.empty()) continue;
-    const std::vector<VertexId> used = SplitUnit(u, blade_in(u), shut);
+    for (const ShutFace& face : ShutCrackFaces(u, blade)) {
+      shut[u].push_back(face.key);
+      if (face.beside) shut[*face.beside].push_back(face.key);
+    }
+  }
+  std::vector<TetId> again;
+  for (const auto& [u, keys] : shut) again.push_back(u);
+  std::sort(again.begin(), again.end());  // the same points whatever the map's order
+  origins.clear();
+  for (const TetId u : again) {
+    std::vector<FaceKey>& keys = shut.at(u);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    const std::vector<VertexId> used = SplitUnit(u, blade_in(u), keys);
     origins.insert(origins.end(), used.begin(), used.end());
   }
   if (!origins.empty()) Repart(origins);
@@ -105,14 +116,16 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   // While the blade is in the unit, crack faces parting leaves shut are opened at their middle
   // (SplitUnits) and stay so as the blade moves. A split for good opens none: the crack's edge has
   // moved on, and the faces it leaves shut open by parting, or at the end (OpenShutCrackFaces).
+  // Faces inside the unit stay opened; one in a face of the unit opens only while both units at
+  // it have the blade in them and find it shut (SplitUnits), so the two always agree.
   std::vector<FaceKey> openings;
   if (was_open && blade != nullptr) {
     for (const FaceKey& key : open_.at(unit).openings) {
-      if (OpenAtItsMiddle(unit, corners, key, &*split)) openings.push_back(key);
+      if (OpenAtItsMiddle(unit, crack, key, &*split) == 2) openings.push_back(key);
     }
   }
   for (const FaceKey& key : to_open) {
-    if (OpenAtItsMiddle(unit, corners, key, &*split)) openings.push_back(key);
+    if (OpenAtItsMiddle(unit, crack, key, &*split) == 2) openings.push_back(key);
   }
   std::vector<FaceKey> crack_faces;
   for (const auto& f : split->crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
@@ -150,27 +163,60 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   return to_part;
 }
 
-bool CrackCutter::OpenAtItsMiddle(TetId unit, const mesh::TetVertices& corners, const FaceKey& key,
-                                  CrackSplit* split) {
-  const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
-  const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
-  if (!HasInnerCrackFace(*split, key)) return false;
-  const VertexId point =
-      TemporaryVertex(OpeningPlace(unit, key), corners,
-                      geometry::BarycentricWeights(rest(corners[0]), rest(corners[1]),
-                                                   rest(corners[2]), rest(corners[3]), middle));
-  KERF_CHECK(OpenCrackFace(split, key, point));
-  return true;
+namespace {
+
+// The barycentric weights of `x`, a point in the triangle's plane, on its corners.
+Eigen::Vector3d TriangleWeights(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                const Eigen::Vector3d& c, const Eigen::Vector3d& x) {
+  const Eigen::Vector3d u = b - a, v = c - a, r = x - a;
+  const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), ru = r.dot(u), rv = r.dot(v);
+  const double det = uu * vv - uv * uv;
+  const double s = (ru * vv - rv * uv) / det, t = (rv * uu - ru * uv) / det;
+  return {1 - s - t, s, t};
 }
 
-std::vector<FaceKey> CrackCutter::ShutInnerCrackFaces(TetId unit) const {
+}  // namespace
+
+int CrackCutter::OpenAtItsMiddle(TetId unit, const TetCrack& crack, const FaceKey& key,
+                                 CrackSplit* split) {
+  const int sides = CrackFaceSides(*split, key);
+  if (sides == 0) return 0;
+  const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
+  const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
+  VertexId point;
+  if (sides == 2) {
+    const mesh::TetVertices& c = crack.corners;
+    point = TemporaryVertex(
+        OpeningPlace(unit, key), c,
+        geometry::BarycentricWeights(rest(c[0]), rest(c[1]), rest(c[2]), rest(c[3]), middle));
+  } else {
+    const auto in_face = [&](int k) {
+      const std::vector<VertexId>& on = crack.face_vertices[k];
+      return std::all_of(key.begin(), key.end(), [&](VertexId v) {
+        return std::find(on.begin(), on.end(), v) != on.end();
+      });
+    };
+    int k = 0;
+    while (!in_face(k)) ++k;
+    const FaceKey face = MakeFaceKey(crack.points[k].corners[0], crack.points[k].corners[1],
+                                     crack.points[k].corners[2]);
+    const Eigen::Vector3d w = TriangleWeights(rest(face[0]), rest(face[1]), rest(face[2]), middle);
+    point = TemporaryVertex(FaceOpeningPlace(key), {face[0], face[1], face[2], face[0]},
+                            {w[0], w[1], w[2], 0});
+  }
+  KERF_CHECK(OpenCrackFace(split, key, point));
+  return sides;
+}
+
+std::vector<CrackCutter::ShutFace> CrackCutter::ShutCrackFaces(
+    TetId unit, const absl::flat_hash_map<TetId, BladeIn>& blade) const {
   const OpenTet& open = open_.at(unit);
-  std::vector<FaceKey> shut;
+  std::vector<ShutFace> shut;
   for (const FaceKey& key : open.crack) {
-    std::vector<mesh::TetVertices> sides;  // each piece's ids for the key's origins
+    std::vector<std::array<VertexId, 3>> sides;  // each piece's ids for the key's origins
     for (const TetId p : open.pieces) {
       std::array<bool, 3> found{};
-      mesh::TetVertices named = {key[0], key[1], key[2], key[0]};
+      std::array<VertexId, 3> named = key;
       for (const VertexId v : mesh_->tet(p)) {
         for (int k = 0; k < 3; ++k) {
           if (parting_.Origin(v) == key[k]) named[k] = v, found[k] = true;
@@ -178,7 +224,19 @@ std::vector<FaceKey> CrackCutter::ShutInnerCrackFaces(TetId unit) const {
       }
       if (found[0] && found[1] && found[2]) sides.push_back(named);
     }
-    if (sides.size() == 2 && sides[0] == sides[1]) shut.push_back(key);
+    if (sides.size() == 2 && sides[0] == sides[1]) shut.push_back({key, std::nullopt});
+    if (sides.size() != 1) continue;
+    // In a face of the unit: shut if a tet beside uses the same vertices.
+    const auto [a, b, c] = sides[0];
+    for (const TetId t : mesh_->TetsAroundFace(a, b, c)) {
+      const TetId beside = UnitOf(t);
+      if (beside == unit) continue;
+      const auto other = open_.find(beside);
+      if (blade.contains(beside) && other != open_.end() &&
+          std::binary_search(other->second.crack.begin(), other->second.crack.end(), key)) {
+        shut.push_back({key, beside});
+      }
+    }
   }
   return shut;
 }

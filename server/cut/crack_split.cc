@@ -418,19 +418,21 @@ bool HasAll(const TetVertices& t, const Triangle& face) {
 
 }  // namespace
 
-bool HasInnerCrackFace(const CrackSplit& split, const Triangle& face) {
+int CrackFaceSides(const CrackSplit& split, const Triangle& face) {
   const Triangle key = Sorted(face);
-  return std::any_of(split.crack_faces.begin(), split.crack_faces.end(),
-                     [&](const Triangle& c) { return Sorted(c) == key; }) &&
-         std::count_if(split.tets.begin(), split.tets.end(),
-                       [&](const TetVertices& t) { return HasAll(t, face); }) == 2;
+  if (std::none_of(split.crack_faces.begin(), split.crack_faces.end(),
+                   [&](const Triangle& c) { return Sorted(c) == key; })) {
+    return 0;
+  }
+  return static_cast<int>(std::count_if(split.tets.begin(), split.tets.end(),
+                                        [&](const TetVertices& t) { return HasAll(t, face); }));
 }
 
 bool OpenCrackFace(CrackSplit* split, const Triangle& face, VertexId point) {
-  if (!HasInnerCrackFace(*split, face)) return false;
+  if (CrackFaceSides(*split, face) == 0) return false;
   const Triangle key = Sorted(face);
   std::erase_if(split->crack_faces, [&](const Triangle& c) { return Sorted(c) == key; });
-  std::vector<VertexId> off;  // the two tets' corners off the face
+  std::vector<VertexId> off;  // the corners off the face of the tets with it
   std::erase_if(split->tets, [&](const TetVertices& t) {
     if (!HasAll(t, face)) return false;
     for (const VertexId v : t) {

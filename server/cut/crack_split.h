@@ -64,13 +64,16 @@ CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
 // points at once). Each such group joins one group beside it: the crack faces between them go.
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split);
 
-// Opens the split's inner crack face `face` (a face of two of its tets; its vertices in any
-// order) at `point`, a new vertex strictly inside it: the two tets become three each, from
-// `point` over the face's edges, and the face three crack faces through `point`. A crack face
-// none of whose vertices the crack parts (all lie on the crack's edge: the blade, the tip's
-// path) stays shut; `point`, on the crack with one side of it on each side, is parted, so the
-// crack opens there. False (and nothing changed) if `face` is not such a face.
-bool HasInnerCrackFace(const CrackSplit& split, const std::array<mesh::VertexId, 3>& face);
+// How many of the split's tets have `face` (its vertices in any order) when it is a crack face:
+// 2 inside the tet, 1 on one of its faces (a triangle of the face rule on the crack), 0 if it
+// is no crack face of the split.
+int CrackFaceSides(const CrackSplit& split, const std::array<mesh::VertexId, 3>& face);
+// Opens the split's crack face `face` at `point`, a new vertex strictly inside it: each tet of
+// the split with the face becomes three, from `point` over the face's edges, and the face three
+// crack faces through `point`. A crack face none of whose vertices the crack parts (all lie on
+// the crack's edge: the blade, the tip's path) stays shut; `point`, on the crack with one side
+// of it on each side, is parted, so the crack opens there. A face on the tet's face must be
+// opened alike by the tet beside it. False (and nothing changed) if `face` is no crack face.
 bool OpenCrackFace(CrackSplit* split, const std::array<mesh::VertexId, 3>& face,
                    mesh::VertexId point);
 

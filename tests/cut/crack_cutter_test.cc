@@ -375,12 +375,11 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
       lagging += r.lagging;
     }
     EXPECT_GE(mean, 0.99) << lab::PathFamilyName(family);
-    // Progressive, a hand's path: the crack reaches the blade after all but 1% of the steps
-    // (docs/cutting-fidelity.md; the blade through vertices, along edges and in faces' planes
-    // lags more, waiting for vertices to snap).
-    if (family == lab::PathFamily::kHand && GetParam() == CutMode::kProgressive) {
+    // Progressive: the crack reaches the blade after all but 1% of the steps (in faces' planes
+    // 5%: docs/cutting-fidelity.md).
+    if (GetParam() == CutMode::kProgressive) {
       EXPECT_GT(steps, 0u);
-      EXPECT_LE(100 * lagging, steps);
+      EXPECT_LE((family == lab::PathFamily::kInFacePlane ? 20 : 100) * lagging, steps);
     }
     // At most 0.5% of the new tets under 5 degrees.
     EXPECT_LE(200 * slivers, new_tets) << lab::PathFamilyName(family);

@@ -500,16 +500,34 @@ TEST(CrackSplit, ACrackFaceOpenedAtItsMiddleHasTheCrackOnBothSidesOfItsPoint) {
   EXPECT_EQ(sides, 2);
 }
 
-TEST(CrackSplit, OnlyAnInnerCrackFaceOpens) {
-  OneTet tet = CornerThreeCutOff();
+// A crack face in one of the tet's faces (its three corners on the crack) opens in its one
+// tet; the tet beside must open it alike. A face off the crack does not open.
+TEST(CrackSplit, ACrackFaceInAFaceOfTheTetOpensItsOneTet) {
+  OneTet tet;
+  for (const int k : {0, 1, 2}) tet.CornerOnCrack(k);
   const TetCrack crack = tet.Crack();
-  CrackSplit split = SplitAsCone(crack, tet.Apex(Eigen::Vector4d(0.3, 0.2, 0.2, 0.3)));
-  const CrackSplit before = split;
-  const VertexId point = tet.Apex(Eigen::Vector4d::Constant(0.25));
+  std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
+  ASSERT_TRUE(split);
   const mesh::TetVertices& c = tet.corners();
-  EXPECT_FALSE(OpenCrackFace(&split, {c[0], c[1], c[2]}, point));  // a face of the tet
-  EXPECT_EQ(split.tets, before.tets);
-  EXPECT_EQ(split.crack_faces, before.crack_faces);
+  const Triangle face = {c[0], c[1], c[2]};
+  ASSERT_EQ(CrackFaceSides(*split, face), 1);
+  EXPECT_EQ(CrackFaceSides(*split, {c[0], c[1], c[3]}), 0);  // off the crack
+  const CrackSplit before = *split;
+  const VertexId point = tet.Apex(Eigen::Vector4d(0.3, 0.3, 0.4, 0));
+  EXPECT_FALSE(OpenCrackFace(&*split, {c[0], c[1], c[3]}, point));
+  EXPECT_EQ(split->tets, before.tets);
+  ASSERT_TRUE(OpenCrackFace(&*split, face, point));
+  EXPECT_EQ(split->tets.size(), before.tets.size() + 2);
+  double volume = 0;
+  for (const mesh::TetVertices& t : split->tets) {
+    EXPECT_GT(std::abs(tet.Volume(t)), 1e-9);
+    volume += std::abs(tet.Volume(t));
+  }
+  EXPECT_NEAR(volume, std::abs(tet.Volume(c)), 1e-12);
+  EXPECT_EQ(split->crack_faces.size(), 3u);
+  for (const Triangle& f : split->crack_faces) {
+    EXPECT_NE(std::find(f.begin(), f.end(), point), f.end());
+  }
 }
 
 }  // namespace
