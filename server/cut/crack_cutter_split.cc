@@ -125,7 +125,11 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     }
   }
   for (const FaceKey& key : to_open) {
-    if (OpenAtItsMiddle(unit, crack, key, &*split) == 2) openings.push_back(key);
+    // The split is the one that left it shut, made again: it has the face (the unit beside
+    // opens it too).
+    const int sides = OpenAtItsMiddle(unit, crack, key, &*split);
+    KERF_CHECK(sides > 0);
+    if (sides == 2) openings.push_back(key);
   }
   std::vector<FaceKey> crack_faces;
   for (const auto& f : split->crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
