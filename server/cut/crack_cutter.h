@@ -140,7 +140,7 @@ class CrackCutter {
     mesh::TetId source;         // the tissue's tet it came from
     std::vector<mesh::TetId> pieces;
     std::vector<FaceKey> crack;  // the crack faces its pieces hold
-    // Inner crack faces opened at a point in their middle (OpenShutFaces), by origins.
+    // Crack faces inside it opened at a point in their middle (SplitUnits), by origins.
     std::vector<FaceKey> openings;
   };
   // The blade's points in a tet it meets now.
