@@ -350,8 +350,20 @@ VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<Vert
     return temporary_[place] = MakeVertex(origins, weights);
   }
   recipe_[it->second] = {origins, weights, ScaleOf(origins, weights)};
-  for (const VertexId v : parting_.Ids(it->second)) {
-    if (mesh_->IsAlive(v)) PlaceOnItsSide(v, origins, weights);
+  if (parting_.HasCopies(it->second)) {
+    // Parted (a point opening a crack face): its copies lie on the two sides of an opening, so
+    // each keeps its own displacement, and the opening stays as open as the tissue made it.
+    Eigen::Vector3d rest = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) rest += weights[k] * mesh_->rest_position(origins[k]);
+    for (const VertexId v : parting_.Ids(it->second)) {
+      if (!mesh_->IsAlive(v)) continue;
+      const Eigen::Vector3d displacement = mesh_->current_position(v) - mesh_->rest_position(v);
+      KERF_CHECK(mesh_->MoveVertex(v, rest, rest + displacement).ok());
+    }
+  } else {
+    for (const VertexId v : parting_.Ids(it->second)) {
+      if (mesh_->IsAlive(v)) PlaceOnItsSide(v, origins, weights);
+    }
   }
   ++statistics_.moved;
   return it->second;
