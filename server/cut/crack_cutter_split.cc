@@ -219,14 +219,10 @@ std::vector<CrackCutter::ShutFace> CrackCutter::ShutCrackFaces(
   for (const FaceKey& key : open.crack) {
     std::vector<std::array<VertexId, 3>> sides;  // each piece's ids for the key's origins
     for (const TetId p : open.pieces) {
-      std::array<bool, 3> found{};
-      std::array<VertexId, 3> named = key;
-      for (const VertexId v : mesh_->tet(p)) {
-        for (int k = 0; k < 3; ++k) {
-          if (parting_.Origin(v) == key[k]) named[k] = v, found[k] = true;
-        }
-      }
-      if (found[0] && found[1] && found[2]) sides.push_back(named);
+      std::array<bool, 4> found{};
+      const std::array<VertexId, 4> named =
+          NamedIn(std::span<const TetId>(&p, 1), {key[0], key[1], key[2], key[0]}, &found);
+      if (found[0] && found[1] && found[2]) sides.push_back({named[0], named[1], named[2]});
     }
     if (sides.size() == 2 && sides[0] == sides[1]) shut.push_back({key, std::nullopt});
     if (sides.size() != 1) continue;
@@ -281,7 +277,7 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
       } else if (const auto at =
                      blade ? blade->edges.find(edge) : decltype(blade->edges)::const_iterator{};
                  blade != nullptr && at != blade->edges.end()) {
-        const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
+        const auto [low, high] = EdgeEnds(edge);
         p.on_edge[j] = TemporaryVertex(EdgePlace(edge), {low, high, low, low},
                                        {1 - at->second, at->second, 0, 0});
         temporary = true;
@@ -306,7 +302,7 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
         const EdgeKey edge = MakeEdgeKey(a, b);
         const double fraction =
             edge_points_.contains(edge) ? edge_points_.at(edge).fraction : blade->edges.at(edge);
-        const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
+        const auto [low, high] = EdgeEnds(edge);
         for (int i = 0; i < 3; ++i) {
           if (key[i] == low) weights[i] += (1 - fraction) / 3;
           if (key[i] == high) weights[i] += fraction / 3;
