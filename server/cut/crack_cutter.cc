@@ -263,6 +263,9 @@ void CrackCutter::OpenShutCrackFaces() {
     const std::vector<TetId> units = UnitsAround({key[0], key[1], key[2]});
     if (units.size() < 2) continue;  // on the tissue's boundary
     face_points_[key] = {Eigen::Vector3d::Constant(1.0 / 3)};
+    // Its corners are on the crack (points the cut made among them too), so the face rule puts
+    // the three triangles through the new point on it.
+    on_crack_.insert(key.begin(), key.end());
     touched.insert(touched.end(), units.begin(), units.end());
   }
   if (touched.empty()) return;
