@@ -330,7 +330,7 @@ void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
     const double within = snap_fraction_ * edges / 6;
     for (int k = 0; k < 4; ++k) {
       const VertexId v = corners[k];
-      if (on_crack_.contains(v) || !seen.insert(v).second) continue;
+      if (on_crack_.contains(v) || IsInnerPoint(v) || !seen.insert(v).second) continue;
       const Eigen::Vector3d& x = mesh_->current_position(placed[k]);
       const double distance =
           std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),

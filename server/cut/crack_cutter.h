@@ -211,6 +211,14 @@ class CrackCutter {
   // fraction of the tissue's edge length there, so a piece's edges snap as far as the edges of
   // the tet it is part of (cuts through pieces make no smaller pieces than cuts through tets).
   double SnapShare(std::span<const mesh::VertexId> corners) const;
+  // Whether `origin` is a point the cut made inside a tet (a cone's apex, the blade's, the middle
+  // of a crack face it opened). Such a point is never snapped onto the crack: snapped, the pieces
+  // around it would split as cones with apexes of their own near the blade, snapped in turn at
+  // the next pose (a blade sweeping again beside the crack multiplied its pieces without end).
+  bool IsInnerPoint(mesh::VertexId origin) const {
+    const auto it = recipe_.find(origin);
+    return it != recipe_.end() && (it->second.weights.array() != 0).count() == 4;
+  }
   // A made point's PointRecipe::scale (0 for the tissue's own vertices).
   double TissueScale(mesh::VertexId origin) const {
     const auto it = recipe_.find(origin);
