@@ -307,15 +307,38 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
   const EdgeKey key = MakeEdgeKey(low, high);
   if (edge_points_.contains(key)) return;
   const double share = SnapShare(std::array<VertexId, 2>{low, high});
-  if (fraction < share && (fraction <= 0.5 || share < 0.5)) {
-    Snap(low, touched);
-  } else if (fraction > 1 - share) {
-    Snap(high, touched);
+  // The least snapping (the fraction at its minimum) moves no crossing for quality either.
+  const double sliver_share = snap_fraction_ > kMinSnapFraction ? kSliverSnapScale * share : 0;
+  const double from_corner = std::min(fraction, 1 - fraction);
+  std::vector<TetId> units = UnitsAround({low, high});
+  if (from_corner < share ||
+      (from_corner < sliver_share && BisectionLeavesSliver(low, high, fraction, units))) {
+    Snap(fraction <= 0.5 ? low : high, touched);
   } else {
     edge_points_[key] = {fraction};
-    const std::vector<TetId> units = UnitsAround({low, high});
     touched->insert(touched->end(), units.begin(), units.end());
   }
+}
+
+bool CrackCutter::BisectionLeavesSliver(VertexId low, VertexId high, double fraction,
+                                        const std::vector<TetId>& units) const {
+  const Eigen::Vector3d point =
+      (1 - fraction) * mesh_->rest_position(low) + fraction * mesh_->rest_position(high);
+  for (const TetId u : units) {
+    const mesh::TetVertices corners = CornersOf(u);
+    std::array<Eigen::Vector3d, 4> x;
+    for (int k = 0; k < 4; ++k) x[k] = mesh_->rest_position(corners[k]);
+    for (int k = 0; k < 4; ++k) {
+      if (corners[k] != low && corners[k] != high) continue;
+      std::array<Eigen::Vector3d, 4> half = x;  // the half without corners[k]
+      half[k] = point;
+      if (geometry::MeasureTet(half[0], half[1], half[2], half[3]).min_dihedral_deg <
+          kSliverAngleDeg) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,

@@ -7,8 +7,9 @@
 // first crossing of the tip's path: where the crack ends), and the vertices the crack passes
 // through. Snapping is decided once per crossing: one within `snap_fraction` of the tissue's edge
 // length there from a corner (of a face's, barycentric, from a corner, or from an edge, where it
-// becomes that edge's point), and a vertex that near the swept surface, is taken at the corner,
-// which is then on the crack. The tissue's edge length is the edge's own for the tissue's edges
+// becomes that edge's point; an edge's within kSliverSnapScale times that where it would make a
+// sliver), and a vertex that near the swept surface, is taken at the corner, which is then on the
+// crack. The tissue's edge length is the edge's own for the tissue's edges
 // and that of the tet it was cut from for a piece's edge (SnapShare), so a cut through pieces
 // makes none finer than a cut through tets. Points are kept as weights until a split uses them.
 // Edges and faces are named by their vertices' origins (cut/star_parting.h), so the two lips of a
@@ -65,6 +66,14 @@ inline constexpr double kDefaultMinTemporaryHeight = 0.02;
 // Crossings closer than this to a corner are always taken at it, whatever the snap fraction.
 inline constexpr double kMinSnapFraction = 0.01;
 inline constexpr double kDefaultCrackSnapFraction = 0.2;
+// An edge's crossing farther from its nearer corner than the snap share, but within this many
+// times it, snaps too where a piece under kSliverAngleDeg would come of it: where bisecting a tet
+// at the edge at that point leaves a half under that angle (rest positions). With the default
+// fraction, crossings 0.2-0.35 of an edge from a corner, of which most of the slivers cut into
+// meshes of uneven tets came (docs/cutting-fidelity.md). None with the least snapping (a snap
+// fraction of kMinSnapFraction or less).
+inline constexpr double kSliverSnapScale = 1.75;
+inline constexpr double kSliverAngleDeg = 5;
 // The blade's crossing of a face is a temporary point unless it is within this (barycentric) of
 // the face's edges; temporary points are not snapped, so the crack follows the blade closely
 // (their thin pieces last only while the blade is in their tet).
@@ -207,6 +216,10 @@ class CrackCutter {
   void SnapVerticesNear(const BladePose& from, const BladePose& to,
                         const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
+  // Whether bisecting one of `units` (those at the edge) at the point `fraction` from `low` to
+  // `high` leaves a half under kSliverAngleDeg (rest positions).
+  bool BisectionLeavesSliver(mesh::VertexId low, mesh::VertexId high, double fraction,
+                             const std::vector<mesh::TetId>& units) const;
   // The share of a crossing's edge (or face) within which it snaps to a corner: the snap
   // fraction of the tissue's edge length there, so a piece's edges snap as far as the edges of
   // the tet it is part of (cuts through pieces make no smaller pieces than cuts through tets).

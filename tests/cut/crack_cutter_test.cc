@@ -111,6 +111,36 @@ TEST(CrackCutter, CutsThroughPiecesSnapAsFarAsThroughTheirTet) {
 
 // A blade trembling back and forth across edges cuts each once (deferred: the first crossing
 // is the cut, later ones are the same cut): the same tets as one clean pass.
+// A blade sweeping the plane 0.27 of the way up edge 0-1, in a tet whose corners 0 and 1 stand
+// `angle` apart as seen from edge 2-3 (its dihedral angle there): 17 degrees, and a tet bisected
+// at that point would leave a half of 4.6 degrees, so the crossing is taken at corner 0 (the
+// crack runs from it to the points on edges 1-2 and 1-3); 45 degrees, and it makes a point there.
+TEST(CrackCutter, ACrossingThatWouldLeaveASliverSnapsToItsCorner) {
+  for (const double height : {0.3, 1.0}) {
+    SCOPED_TRACE(::testing::Message() << "corner 1 at height " << height);
+    TetMesh m;
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0, height),
+                                     Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0)}) {
+      m.AddVertex(p);
+    }
+    ASSERT_TRUE(
+        m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)})
+            .ok());
+    CrackCutter cutter =
+        *CrackCutter::Create(&m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100});
+    const double z = 0.27 * height;
+    ASSERT_TRUE(cutter.ApplyPose({0, {-1, -2, z}, {3, -2, z}}).ok());
+    ASSERT_TRUE(cutter.ApplyPose({0.1, {-1, 2, z}, {3, 2, z}}).ok());
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    const bool point_on_edge = std::any_of(m.vertices().begin(), m.vertices().end(), [&](auto v) {
+      return (m.rest_position(v) - Eigen::Vector3d(1, 0, z)).norm() < 1e-12;
+    });
+    EXPECT_EQ(point_on_edge, height == 1.0);
+    EXPECT_EQ(cutter.statistics().cut_tets, 1u);
+  }
+}
+
 TEST(CrackCutter, TrembleAcrossEdgesCutsThemOnce) {
   const TetMesh lattice = *mesh::MakeBoxLattice({.cells_x = 2, .cells_y = 2, .cells_z = 2});
   std::size_t tets[2] = {0, 0};
@@ -414,8 +444,9 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
 
 // The liver of the paper's lineage and its finer remesh, made by other tools: every family,
 // three seeds each. Valid after every pose; coverage and slivers as measured
-// (docs/cutting-fidelity.md): no new tet under 1 degree, and under 5 degrees at most 1% of the
-// new tets over a liver's paths (the goal, 0.5% on each family, is met on 5 of 8).
+// (docs/cutting-fidelity.md): no new tet under 1 degree, and under 5 degrees at most 0.5% of the
+// new tets over a liver's paths (measured 0.21% and 0.11%; the goal, 0.5% on each family, is met
+// on all but liver.msh's vertices paths, 7 of 942 here, 12 of 2,557 over ten seeds).
 TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
   for (const char* name : {"liver.msh", "liver2.msh"}) {
     const std::string path = kerf::testing::SharedMeshPath(name);
@@ -445,7 +476,7 @@ TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
         "%s: mean coverage %.3f, below the surface %.3f, %zu of %zu new tets under 5 deg, "
         "over %d paths\n",
         name, coverage / runs, below / runs, slivers, new_tets, runs);
-    EXPECT_LE(100 * slivers, new_tets) << name;
+    EXPECT_LE(200 * slivers, new_tets) << name;
     EXPECT_GE(coverage / runs, 0.95) << name;
     EXPECT_GE(below / runs, 0.99) << name;
   }
