@@ -310,7 +310,7 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
   // The least snapping (the fraction at its minimum) moves no crossing for quality either.
   const double sliver_share = snap_fraction_ > kMinSnapFraction ? kSliverSnapScale * share : 0;
   const double from_corner = std::min(fraction, 1 - fraction);
-  std::vector<TetId> units = UnitsAround({low, high});
+  const std::vector<TetId> units = UnitsAround({low, high});
   if (from_corner < share ||
       (from_corner < sliver_share && BisectionLeavesSliver(low, high, fraction, units))) {
     Snap(fraction <= 0.5 ? low : high, touched);
