@@ -151,14 +151,6 @@ class CrackCutter {
     std::vector<FaceKey> crack;  // the crack faces its pieces hold
     // Crack faces inside it opened at a point in their middle (SplitUnits), by origins.
     std::vector<FaceKey> openings;
-    // The points its pieces were split from, whether they are a cone from the blade's apex, and
-    // whether they can stand as the points move (none with a crack face opened in a face of the
-    // unit: that is opened anew every pose, with the unit beside). While the blade is in the
-    // unit and its points are the same, the pieces stand as long as none turns inside out, and
-    // only the temporary points move (SplitUnit); a split for good is made anew.
-    std::array<FacePoints, 4> points;
-    bool cone = false;
-    bool can_stand = false;
   };
   // The blade's points in a tet it meets now.
   struct BladeIn {
@@ -277,17 +269,9 @@ class CrackCutter {
   void SplitUnits(std::vector<mesh::TetId> units,
                   const absl::flat_hash_map<mesh::TetId, BladeIn>& blade);
   // Splits one unit, opening its crack faces in `to_open` and those it opened before (where the
-  // split still has them); returns the origins whose parting may have changed. An open unit the
-  // blade is in whose points are those its pieces came from keeps them (MoveTemporaryPoints).
+  // split still has them); returns the origins whose parting may have changed.
   std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade,
                                         std::span<const FaceKey> to_open = {});
-  // Whether the unit's pieces can stand for `crack`'s points (OpenTet::points): if so moves its
-  // temporary points (its apex, its openings) as a split would and returns whether every piece
-  // is still the right way out (rest positions); false and nothing moved if they cannot.
-  bool MoveTemporaryPoints(mesh::TetId unit, const TetCrack& crack, const BladeIn& blade);
-  // The point opening the crack face `key` inside the unit (corners `corners`), at its middle.
-  mesh::VertexId InnerOpeningPoint(mesh::TetId unit, const mesh::TetVertices& corners,
-                                   const FaceKey& key);
   // A crack face of an open unit that parting left shut (its sides use the same vertices: every
   // corner lies on the crack's edge, the blade or the tip's path), and for one in a face of the
   // unit the open unit beside it that must open it alike (none if it is inside the unit).
@@ -299,10 +283,6 @@ class CrackCutter {
   // (`blade`), which is split again with it.
   std::vector<ShutFace> ShutCrackFaces(
       mesh::TetId unit, const absl::flat_hash_map<mesh::TetId, BladeIn>& blade) const;
-  // Those of the open units among `units` the blade is in, with their units.
-  std::vector<std::pair<mesh::TetId, ShutFace>> ShutCrackFacesOf(
-      const std::vector<mesh::TetId>& units,
-      const absl::flat_hash_map<mesh::TetId, BladeIn>& blade) const;
   // Opens the crack face `key` of `split` (if it has it) at a point in its middle: for a face
   // inside the unit, on the unit's corners; for one in a face of the unit, on that face's
   // corners, the same point for the unit beside it. Returns CrackFaceSides (0: not opened).
@@ -380,7 +360,6 @@ class CrackCutter {
   std::vector<mesh::TetId> blade_units_;              // the units the blade was in at the last pose
   absl::flat_hash_map<EdgeKey, double> blade_edges_;  // its temporary edge points then
   absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;  // temporary piece -> its open tet
-  absl::flat_hash_set<mesh::TetId> standing_;  // open units whose pieces stood in this split
   // Temporary points by place (a face's key hash, or an open tet's id), and those used this pose.
   absl::flat_hash_map<std::uint64_t, mesh::VertexId> temporary_;
   absl::flat_hash_set<std::uint64_t> temporary_used_;

@@ -40,31 +40,13 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
   Repart(origins);
   // Crack faces parting left shut open at a point of their own, so the crack opens up to the
   // blade and the tip's path however thin it is in a tet.
-  std::vector<std::pair<TetId, ShutFace>> shut_faces = ShutCrackFacesOf(units, blade);
-  // A unit whose pieces stood is split anew first where it has such a face (or the unit beside
-  // one has), so that the split made again to open it is its own.
-  std::vector<TetId> anew;
-  for (const auto& [u, face] : shut_faces) {
-    if (standing_.contains(u)) anew.push_back(u);
-    if (face.beside && standing_.contains(*face.beside)) anew.push_back(*face.beside);
-  }
-  standing_.clear();
-  if (!anew.empty()) {
-    std::sort(anew.begin(), anew.end());
-    anew.erase(std::unique(anew.begin(), anew.end()), anew.end());
-    origins.clear();
-    for (const TetId u : anew) {
-      open_.at(u).can_stand = false;
-      const std::vector<VertexId> used = SplitUnit(u, blade_in(u));
-      origins.insert(origins.end(), used.begin(), used.end());
-    }
-    Repart(origins);
-    shut_faces = ShutCrackFacesOf(units, blade);
-  }
   absl::flat_hash_map<TetId, std::vector<FaceKey>> shut;
-  for (const auto& [u, face] : shut_faces) {
-    shut[u].push_back(face.key);
-    if (face.beside) shut[*face.beside].push_back(face.key);
+  for (const TetId u : units) {
+    if (!open_.contains(u) || !blade_in(u)) continue;
+    for (const ShutFace& face : ShutCrackFaces(u, blade)) {
+      shut[u].push_back(face.key);
+      if (face.beside) shut[*face.beside].push_back(face.key);
+    }
   }
   std::vector<TetId> again;
   for (const auto& [u, keys] : shut) again.push_back(u);
@@ -112,15 +94,9 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
                                              std::span<const FaceKey> to_open) {
   const mesh::TetVertices corners = CornersOf(unit);
   const TetCrack crack = MakeTetCrack(corners, PointsOf(corners, blade));
-  const bool was_open = open_.contains(unit);
-  if (was_open && blade != nullptr && to_open.empty() && MoveTemporaryPoints(unit, crack, *blade)) {
-    standing_.insert(unit);
-    return {};
-  }
   const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
   std::optional<CrackSplit> split = SplitWithoutApex(crack, rest);
-  const bool cone = !split;
-  bool can_stand = true;
+  const bool was_open = open_.contains(unit);
   if (split && split->kind == CrackSplitKind::kWhole && !was_open) {
     std::vector<VertexId> to_part;
     for (const auto& f : split->crack_faces) {
@@ -154,7 +130,6 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     const int sides = OpenAtItsMiddle(unit, crack, key, &*split);
     KERF_CHECK(sides > 0);
     if (sides == 2) openings.push_back(key);
-    if (sides == 1) can_stand = false;
   }
   std::vector<FaceKey> crack_faces;
   for (const auto& f : split->crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
@@ -162,10 +137,6 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   if (was_open && open_.at(unit).crack == crack_faces &&
       SamePieces(open_.at(unit).pieces, split->tets)) {
     // Only the temporary points moved (TemporaryVertex moved them): the pieces stand.
-    OpenTet& open = open_.at(unit);
-    open.points = crack.points;
-    open.cone = cone;
-    open.can_stand = can_stand;
     return {};
   }
   // Parting can change only at vertices of the crack faces going or coming, and at those with
@@ -192,40 +163,8 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   const TetId source = was_open ? open_.at(unit).source : SourceTet(unit);
   std::vector<TetId> pieces = Replace(unit, split->tets);
   for (const TetId p : pieces) owner_[p] = unit;
-  open_[unit] = {
-      corners,      source, std::move(pieces), std::move(crack_faces), std::move(openings),
-      crack.points, cone,   can_stand};
+  open_[unit] = {corners, source, std::move(pieces), std::move(crack_faces), std::move(openings)};
   return to_part;
-}
-
-bool CrackCutter::MoveTemporaryPoints(TetId unit, const TetCrack& crack, const BladeIn& blade) {
-  const OpenTet& open = open_.at(unit);
-  if (!open.can_stand || open.points != crack.points) return false;
-  const auto alive = [&](std::uint64_t place) {
-    const auto it = temporary_.find(place);
-    return it != temporary_.end() && mesh_->IsAlive(it->second);
-  };
-  if (open.cone && !alive(ApexPlace(unit))) return false;
-  for (const FaceKey& key : open.openings) {
-    if (!alive(OpeningPlace(unit, key))) return false;
-  }
-  if (open.cone) TemporaryVertex(ApexPlace(unit), open.corners, blade.apex);
-  for (const FaceKey& key : open.openings) InnerOpeningPoint(unit, open.corners, key);
-  return std::all_of(open.pieces.begin(), open.pieces.end(), [&](TetId p) {
-    const mesh::TetVertices& v = mesh_->tet(p);
-    return geometry::SignedVolume(mesh_->rest_position(v[0]), mesh_->rest_position(v[1]),
-                                  mesh_->rest_position(v[2]), mesh_->rest_position(v[3])) > 0;
-  });
-}
-
-VertexId CrackCutter::InnerOpeningPoint(TetId unit, const mesh::TetVertices& corners,
-                                        const FaceKey& key) {
-  const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
-  const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
-  const mesh::TetVertices& c = corners;
-  return TemporaryVertex(
-      OpeningPlace(unit, key), c,
-      geometry::BarycentricWeights(rest(c[0]), rest(c[1]), rest(c[2]), rest(c[3]), middle));
 }
 
 namespace {
@@ -246,12 +185,15 @@ int CrackCutter::OpenAtItsMiddle(TetId unit, const TetCrack& crack, const FaceKe
                                  CrackSplit* split) {
   const int sides = CrackFaceSides(*split, key);
   if (sides == 0) return 0;
+  const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
+  const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
   VertexId point;
   if (sides == 2) {
-    point = InnerOpeningPoint(unit, crack.corners, key);
+    const mesh::TetVertices& c = crack.corners;
+    point = TemporaryVertex(
+        OpeningPlace(unit, key), c,
+        geometry::BarycentricWeights(rest(c[0]), rest(c[1]), rest(c[2]), rest(c[3]), middle));
   } else {
-    const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
-    const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
     const auto in_face = [&](int k) {
       const std::vector<VertexId>& on = crack.face_vertices[k];
       return std::all_of(key.begin(), key.end(), [&](VertexId v) {
@@ -268,16 +210,6 @@ int CrackCutter::OpenAtItsMiddle(TetId unit, const TetCrack& crack, const FaceKe
   }
   KERF_CHECK(OpenCrackFace(split, key, point));
   return sides;
-}
-
-std::vector<std::pair<TetId, CrackCutter::ShutFace>> CrackCutter::ShutCrackFacesOf(
-    const std::vector<TetId>& units, const absl::flat_hash_map<TetId, BladeIn>& blade) const {
-  std::vector<std::pair<TetId, ShutFace>> shut;
-  for (const TetId u : units) {
-    if (!open_.contains(u) || !blade.contains(u)) continue;
-    for (const ShutFace& face : ShutCrackFaces(u, blade)) shut.emplace_back(u, face);
-  }
-  return shut;
 }
 
 std::vector<CrackCutter::ShutFace> CrackCutter::ShutCrackFaces(
