@@ -6,8 +6,6 @@
 #include "absl/strings/str_cat.h"
 #include "base/check.h"
 #include "geometry/point_triangle_distance.h"
-#include "geometry/segment_distance.h"
-#include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
 
 namespace kerf::cut {
@@ -374,127 +372,6 @@ void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {
   ++statistics_.snapped_vertices;
   const std::vector<TetId> units = UnitsAround({v});
   touched->insert(touched->end(), units.begin(), units.end());
-}
-
-absl::flat_hash_map<TetId, CrackCutter::BladeIn> CrackCutter::BladeUnitsAt(
-    const BladePose& pose) const {
-  absl::flat_hash_map<TetId, BladeIn> blade;
-  BladeCrossingsAt at;
-  for (const TetId u : UnitsNear(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel))) {
-    if (std::optional<BladeIn> in = BladeInUnit(u, pose, &at)) blade[u] = *std::move(in);
-  }
-  // Every unit at an edge the blade passes through has its point (the edge may lie a
-  // rounding error outside the blade's box).
-  std::vector<EdgeKey> through;
-  for (const auto& [u, in] : blade) {
-    for (const auto& [key, fraction] : in.edges) through.push_back(key);
-  }
-  while (!through.empty()) {
-    const EdgeKey key = through.back();
-    through.pop_back();
-    const auto [low, high] = EdgeEnds(key);
-    for (const TetId u : UnitsAround({low, high})) {
-      if (blade.contains(u)) continue;
-      std::optional<BladeIn> in = BladeInUnit(u, pose, &at);
-      KERF_CHECK(in.has_value());  // it has the edge's point at least
-      for (const auto& [other, fraction] : in->edges) through.push_back(other);
-      blade[u] = *std::move(in);
-    }
-  }
-  return blade;
-}
-
-void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& blade,
-                                     std::vector<TetId>* touched) {
-  absl::flat_hash_map<EdgeKey, double> now;
-  for (const auto& [u, in] : blade) now.insert(in.edges.begin(), in.edges.end());
-  std::vector<std::pair<EdgeKey, double>> left;
-  for (const auto& [key, fraction] : blade_edges_) {
-    if (!now.contains(key) && !edge_points_.contains(key)) left.emplace_back(key, fraction);
-  }
-  std::sort(left.begin(), left.end());  // the same points whatever the map's order
-  for (const auto& [key, fraction] : left) {
-    std::vector<TetId> around;
-    const auto [low, high] = EdgeEnds(key);
-    RecordEdgeCrossing(low, high, fraction, &around);
-    Join(around);
-    touched->insert(touched->end(), around.begin(), around.end());
-  }
-  blade_edges_ = std::move(now);
-}
-
-namespace {
-
-// Where the blade passes through the edge a-b, as a fraction from a: the blade lying in the
-// edge's plane (or its tip on the edge) and not along it, strictly inside the edge.
-std::optional<double> BladeThroughEdge(const BladePose& pose, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b) {
-  const Eigen::Vector3d blade = pose.heel - pose.tip, edge = b - a;
-  if (blade.cross(edge).norm() <= 1e-6 * blade.norm() * edge.norm()) return std::nullopt;
-  const geometry::ClosestPoints c = geometry::ClosestPointsOfSegments(pose.tip, pose.heel, a, b);
-  if (c.distance > kInPlaneTolerance * edge.norm() || c.t < kMinTemporaryWeight ||
-      c.t > 1 - kMinTemporaryWeight) {
-    return std::nullopt;
-  }
-  return c.t;
-}
-
-}  // namespace
-
-std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const BladePose& pose,
-                                                             BladeCrossingsAt* found) const {
-  const mesh::TetVertices corners = CornersOf(unit), placed = PlacedCorners(unit);
-  std::array<Eigen::Vector3d, 4> x;
-  for (int k = 0; k < 4; ++k) x[k] = mesh_->current_position(placed[k]);
-  BladeIn in;
-  bool meets = geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip) ||
-               geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.heel);
-  double first = 1, last = 0;  // the blade's chord through the tet, along it from the tip
-  for (const auto& f : mesh::kTetFaces) {
-    // Each face's crossing is found once, on its vertices in key order, so the two tets at it
-    // agree on it.
-    const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
-    auto [at, inserted] = found->faces.try_emplace(key);
-    if (inserted) {
-      std::array<Eigen::Vector3d, 3> y;  // the face's corners in key order
-      for (int j = 0; j < 3; ++j) {
-        for (int i = 0; i < 3; ++i) {
-          if (corners[f[i]] == key[j]) y[j] = x[f[i]];
-        }
-      }
-      at->second = geometry::IntersectSegmentTriangle(pose.tip, pose.heel, y[0], y[1], y[2]);
-    }
-    const auto& crossing = at->second;
-    if (!crossing) continue;
-    meets = true;
-    in.crossed.push_back(key);
-    first = std::min(first, crossing->t);
-    last = std::max(last, crossing->t);
-    if (!face_points_.contains(key) && crossing->barycentric.minCoeff() >= kMinTemporaryWeight) {
-      in.faces[key] = crossing->barycentric;
-    }
-  }
-  for (const auto& [i, j] : mesh::kTetEdges) {
-    const EdgeKey key = MakeEdgeKey(corners[i], corners[j]);
-    if (edge_points_.contains(key)) continue;
-    // Found once, from the lower id, so the units at the edge agree on it.
-    const bool from_i = Index(corners[i]) < Index(corners[j]);
-    auto [at, inserted] = found->edges.try_emplace(key);
-    if (inserted) at->second = BladeThroughEdge(pose, from_i ? x[i] : x[j], from_i ? x[j] : x[i]);
-    if (!at->second) continue;
-    meets = true;
-    in.edges[key] = *at->second;
-  }
-  if (!meets) return std::nullopt;
-  Eigen::Vector3d point = 0.25 * (x[0] + x[1] + x[2] + x[3]);
-  if (geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip)) {
-    point = pose.tip;
-    in.tip_inside = true;
-  } else if (first <= last) {
-    point = pose.tip + 0.5 * (first + last) * (pose.heel - pose.tip);
-  }
-  in.apex = PulledInside(geometry::BarycentricWeights(x[0], x[1], x[2], x[3], point));
-  return in;
 }
 
 // Deferred groups.

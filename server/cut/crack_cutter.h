@@ -3,7 +3,8 @@
 // did is dropped, held back or frozen.
 //
 // The crack's state is a set of points on the mesh: at most one on each edge (the first
-// crossing of the blade's edge; later ones are the same cut), at most one inside each face (the
+// crossing of the blade's edge; later ones are the same cut, but where the crack lies along the
+// edge its front advances with the blade), at most one inside each face (the
 // first crossing of the tip's path: where the crack ends), and the vertices the crack passes
 // through. Snapping is decided once per crossing: one within `snap_fraction` of the tissue's edge
 // length there from a corner (of a face's, barycentric, from a corner, or from an edge, where it
@@ -80,8 +81,11 @@ inline constexpr double kSliverAngleDeg = 5;
 inline constexpr double kMinTemporaryWeight = 1e-3;
 // The blade passes through an edge (lying in its plane, or its tip on it) when it comes this
 // near it, in the edge's length: the blade sweeping in the plane of faces crosses none of their
-// edges, and its crossings of them are temporary points so the crack follows it there too.
-inline constexpr double kInPlaneTolerance = 1e-9;
+// edges, and its crossings of them are temporary points so the crack follows it there too. As
+// large as the distance from the edge of a face's crossing too near it to be a point of its own
+// (kMinTemporaryWeight, on a face up to twice as high as the edge is long): a blade nearly in the
+// plane of faces crosses every face that near an edge, and left the tets it was in whole.
+inline constexpr double kInPlaneTolerance = 2 * kMinTemporaryWeight;
 
 struct CrackCutterOptions {
   CutMode mode = CutMode::kProgressive;
@@ -159,6 +163,9 @@ class CrackCutter {
     // Edges with no point for good that the blade passes through (lying in their plane, or its
     // tip on them), by the fraction from the lower id: temporary points.
     absl::flat_hash_map<EdgeKey, double> edges;
+    // Edges with points that it passes through: it lies in the crack there, and meets every unit
+    // at them.
+    std::vector<EdgeKey> cut_edges;
     std::vector<FaceKey> crossed;  // every face the blade crosses
     Eigen::Vector4d apex;          // the crack's point inside: the tip, or the chord's middle
     bool tip_inside = false;
@@ -258,6 +265,12 @@ class CrackCutter {
                                      BladeCrossingsAt* found) const;
   // The units the blade at `pose` meets, with its points in each.
   absl::flat_hash_map<mesh::TetId, BladeIn> BladeUnitsAt(const BladePose& pose) const;
+  // Whether the blade passing through the edge at `fraction` (from its lower id) is farther from
+  // its end on the crack than its point: the crack's front, lying along the edge, advances. The
+  // blade's point then stands in for the edge's while the blade is there (a blade trembling
+  // across the plane of faces crossed their edges, and the crack's front stayed where it
+  // crossed them first).
+  bool AdvancesAlongTheCrack(EdgeKey key, double fraction) const;
   // Progressive: a temporary edge point the blade at the new pose no longer makes (it left the
   // edge's plane, or the edge behind) becomes a point for good where it was last, snapped as
   // any crossing: what was cut stays cut.
@@ -359,6 +372,7 @@ class CrackCutter {
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;
   std::vector<mesh::TetId> blade_units_;              // the units the blade was in at the last pose
   absl::flat_hash_map<EdgeKey, double> blade_edges_;  // its temporary edge points then
+  absl::flat_hash_set<EdgeKey> advancing_;            // those standing in for edges' points
   absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;  // temporary piece -> its open tet
   // Temporary points by place (a face's key hash, or an open tet's id), and those used this pose.
   absl::flat_hash_map<std::uint64_t, mesh::VertexId> temporary_;

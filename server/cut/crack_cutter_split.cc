@@ -60,6 +60,17 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
     origins.insert(origins.end(), used.begin(), used.end());
   }
   if (!origins.empty()) Repart(origins);
+  // So do the vertices of edge points the blade's points stand in for (they are made again if
+  // the crack's front comes back).
+  for (const auto& [u, in] : blade) {
+    for (const auto& [key, fraction] : in.edges) {
+      const auto point = edge_points_.find(key);
+      if (point != edge_points_.end() && point->second.vertex != kNoVertex &&
+          parting_.RemoveIfUnused(mesh_, point->second.vertex)) {
+        point->second.vertex = kNoVertex;
+      }
+    }
+  }
   // Temporary points no split uses this pose go.
   for (auto it = temporary_.begin(); it != temporary_.end();) {
     if (!temporary_used_.contains(it->first) && parting_.RemoveIfUnused(mesh_, it->second)) {
@@ -272,15 +283,17 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
     for (int j = 0; j < 3; ++j) {
       const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
       const EdgeKey edge = MakeEdgeKey(a, b);
-      if (edge_points_.contains(edge)) {
-        p.on_edge[j] = EdgePointVertex(a, b);
-      } else if (const auto at =
-                     blade ? blade->edges.find(edge) : decltype(blade->edges)::const_iterator{};
-                 blade != nullptr && at != blade->edges.end()) {
+      // The blade's point first: where the crack's front advances along an edge with a point,
+      // it stands in for that point.
+      if (const auto at =
+              blade ? blade->edges.find(edge) : decltype(blade->edges)::const_iterator{};
+          blade != nullptr && at != blade->edges.end()) {
         const auto [low, high] = EdgeEnds(edge);
         p.on_edge[j] = TemporaryVertex(EdgePlace(edge), {low, high, low, low},
                                        {1 - at->second, at->second, 0, 0});
         temporary = true;
+      } else if (edge_points_.contains(edge)) {
+        p.on_edge[j] = EdgePointVertex(a, b);
       }
       p.corner_on_crack[j] = on_crack_.contains(p.corners[j]);
     }
@@ -300,8 +313,11 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
       for (int j = 0; j < 3; ++j) {
         const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
         const EdgeKey edge = MakeEdgeKey(a, b);
-        const double fraction =
-            edge_points_.contains(edge) ? edge_points_.at(edge).fraction : blade->edges.at(edge);
+        const auto moving =
+            blade ? blade->edges.find(edge) : decltype(blade->edges)::const_iterator{};
+        const double fraction = blade != nullptr && moving != blade->edges.end()
+                                    ? moving->second
+                                    : edge_points_.at(edge).fraction;
         const auto [low, high] = EdgeEnds(edge);
         for (int i = 0; i < 3; ++i) {
           if (key[i] == low) weights[i] += (1 - fraction) / 3;

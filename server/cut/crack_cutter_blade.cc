@@ -1,0 +1,179 @@
+// CrackCutter: the blade's points in the units it is in (progressive; see crack_cutter.h).
+#include <Eigen/Geometry>
+#include <algorithm>
+
+#include "base/check.h"
+#include "cut/crack_cutter.h"
+#include "geometry/segment_distance.h"
+#include "geometry/segment_triangle_intersection.h"
+#include "geometry/tet_measures.h"
+
+namespace kerf::cut {
+namespace {
+
+using mesh::Index;
+using mesh::TetId;
+using mesh::VertexId;
+
+constexpr VertexId kNoVertex{0xffffffffu};
+
+}  // namespace
+
+absl::flat_hash_map<TetId, CrackCutter::BladeIn> CrackCutter::BladeUnitsAt(
+    const BladePose& pose) const {
+  absl::flat_hash_map<TetId, BladeIn> blade;
+  BladeCrossingsAt at;
+  for (const TetId u : UnitsNear(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel))) {
+    if (std::optional<BladeIn> in = BladeInUnit(u, pose, &at)) blade[u] = *std::move(in);
+  }
+  // Every unit at an edge the blade passes through has its point, or meets the blade where the
+  // edge is cut already (the edge may lie a rounding error outside the blade's box).
+  std::vector<EdgeKey> through;
+  const auto add_through = [&](const BladeIn& in) {
+    for (const auto& [key, fraction] : in.edges) through.push_back(key);
+    through.insert(through.end(), in.cut_edges.begin(), in.cut_edges.end());
+  };
+  for (const auto& [u, in] : blade) add_through(in);
+  while (!through.empty()) {
+    const EdgeKey key = through.back();
+    through.pop_back();
+    const auto [low, high] = EdgeEnds(key);
+    for (const TetId u : UnitsAround({low, high})) {
+      if (blade.contains(u)) continue;
+      std::optional<BladeIn> in = BladeInUnit(u, pose, &at);
+      KERF_CHECK(in.has_value());  // it has the edge at least
+      add_through(*in);
+      blade[u] = *std::move(in);
+    }
+  }
+  return blade;
+}
+
+void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& blade,
+                                     std::vector<TetId>* touched) {
+  absl::flat_hash_map<EdgeKey, double> now;
+  for (const auto& [u, in] : blade) now.insert(in.edges.begin(), in.edges.end());
+  std::vector<std::pair<EdgeKey, double>> left;
+  for (const auto& [key, fraction] : blade_edges_) {
+    // An edge that got a point for good at this step (the tip's path through it) keeps it.
+    if (!now.contains(key) && (advancing_.contains(key) || !edge_points_.contains(key))) {
+      left.emplace_back(key, fraction);
+    }
+  }
+  std::sort(left.begin(), left.end());  // the same points whatever the map's order
+  for (const auto& [key, fraction] : left) {
+    std::vector<TetId> around;
+    const auto [low, high] = EdgeEnds(key);
+    const auto point = edge_points_.find(key);
+    if (!advancing_.contains(key)) {
+      RecordEdgeCrossing(low, high, fraction, &around);
+    } else {
+      // The crack's front advanced along the edge: its point moves there (its vertex went when
+      // the blade's point stood in for it), or the far corner snaps.
+      KERF_CHECK(point->second.vertex == kNoVertex);
+      const double share = SnapShare(std::array<VertexId, 2>{low, high});
+      around = UnitsAround({low, high});
+      if (std::min(fraction, 1 - fraction) < share) {
+        Snap(fraction <= 0.5 ? low : high, &around);
+      } else {
+        point->second = {fraction};
+      }
+    }
+    Join(around);
+    touched->insert(touched->end(), around.begin(), around.end());
+  }
+  advancing_.clear();
+  for (const auto& [key, fraction] : now) {
+    if (edge_points_.contains(key)) advancing_.insert(key);
+  }
+  blade_edges_ = std::move(now);
+}
+
+bool CrackCutter::AdvancesAlongTheCrack(EdgeKey key, double fraction) const {
+  const auto [low, high] = EdgeEnds(key);
+  const bool from_low = on_crack_.contains(low);
+  if (from_low == on_crack_.contains(high)) return false;
+  const double at = edge_points_.at(key).fraction;
+  return from_low ? fraction > at + kMinTemporaryWeight : fraction < at - kMinTemporaryWeight;
+}
+
+namespace {
+
+// Where the blade passes through the edge a-b, as a fraction from a: the blade lying in the
+// edge's plane (or its tip on the edge) and not along it, strictly inside the edge.
+std::optional<double> BladeThroughEdge(const BladePose& pose, const Eigen::Vector3d& a,
+                                       const Eigen::Vector3d& b) {
+  const Eigen::Vector3d blade = pose.heel - pose.tip, edge = b - a;
+  if (blade.cross(edge).norm() <= 1e-6 * blade.norm() * edge.norm()) return std::nullopt;
+  const geometry::ClosestPoints c = geometry::ClosestPointsOfSegments(pose.tip, pose.heel, a, b);
+  if (c.distance > kInPlaneTolerance * edge.norm() || c.t < kMinTemporaryWeight ||
+      c.t > 1 - kMinTemporaryWeight) {
+    return std::nullopt;
+  }
+  return c.t;
+}
+
+}  // namespace
+
+std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const BladePose& pose,
+                                                             BladeCrossingsAt* found) const {
+  const mesh::TetVertices corners = CornersOf(unit), placed = PlacedCorners(unit);
+  std::array<Eigen::Vector3d, 4> x;
+  for (int k = 0; k < 4; ++k) x[k] = mesh_->current_position(placed[k]);
+  BladeIn in;
+  bool meets = geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip) ||
+               geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.heel);
+  double first = 1, last = 0;  // the blade's chord through the tet, along it from the tip
+  for (const auto& f : mesh::kTetFaces) {
+    // Each face's crossing is found once, on its vertices in key order, so the two tets at it
+    // agree on it.
+    const FaceKey key = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+    auto [at, inserted] = found->faces.try_emplace(key);
+    if (inserted) {
+      std::array<Eigen::Vector3d, 3> y;  // the face's corners in key order
+      for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i) {
+          if (corners[f[i]] == key[j]) y[j] = x[f[i]];
+        }
+      }
+      at->second = geometry::IntersectSegmentTriangle(pose.tip, pose.heel, y[0], y[1], y[2]);
+    }
+    const auto& crossing = at->second;
+    if (!crossing) continue;
+    meets = true;
+    in.crossed.push_back(key);
+    first = std::min(first, crossing->t);
+    last = std::max(last, crossing->t);
+    if (!face_points_.contains(key) && crossing->barycentric.minCoeff() >= kMinTemporaryWeight) {
+      in.faces[key] = crossing->barycentric;
+    }
+  }
+  for (const auto& [i, j] : mesh::kTetEdges) {
+    const EdgeKey key = MakeEdgeKey(corners[i], corners[j]);
+    // Found once, from the lower id, so the units at the edge agree on it.
+    const bool from_i = Index(corners[i]) < Index(corners[j]);
+    auto [at, inserted] = found->edges.try_emplace(key);
+    if (inserted) at->second = BladeThroughEdge(pose, from_i ? x[i] : x[j], from_i ? x[j] : x[i]);
+    if (!at->second) continue;
+    // Through an edge cut already the blade meets the unit (it lies in the crack there, which
+    // opens where the blade is in the units on both sides) but makes no point.
+    meets = true;
+    if (!edge_points_.contains(key) || AdvancesAlongTheCrack(key, *at->second)) {
+      in.edges[key] = *at->second;
+    } else {
+      in.cut_edges.push_back(key);
+    }
+  }
+  if (!meets) return std::nullopt;
+  Eigen::Vector3d point = 0.25 * (x[0] + x[1] + x[2] + x[3]);
+  if (geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip)) {
+    point = pose.tip;
+    in.tip_inside = true;
+  } else if (first <= last) {
+    point = pose.tip + 0.5 * (first + last) * (pose.heel - pose.tip);
+  }
+  in.apex = PulledInside(geometry::BarycentricWeights(x[0], x[1], x[2], x[3], point));
+  return in;
+}
+
+}  // namespace kerf::cut
