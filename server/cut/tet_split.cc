@@ -167,175 +167,209 @@ void Append(std::vector<mesh::TetVertices> tets, bool corner0_side, TetSplit* sp
 
 }  // namespace
 
+namespace {
+
+// The face point on the face opposite a corner, if the tip's path crossed it.
+using FacePointOn = std::function<std::optional<VertexId>(int opposite)>;
+
+// Case iii: one edge cut, the tip's path through the two faces at it.
+TetSplit SplitCrackOneEdge(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                           const FacePointOn& face_point,
+                           const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  TetSplit split;
+  // Case iii: edge (a, b) cut; the tip path crossed faces abc and abd.
+  const int a = cuts[0].corner_a, b = cuts[0].corner_b;
+  int c = -1, d = -1;
+  for (int k = 0; k < 4; ++k) {
+    if (k != a && k != b) (c < 0 ? c : d) = k;
+  }
+  const std::optional<VertexId> f_c = face_point(d);  // on face abc
+  const std::optional<VertexId> f_d = face_point(c);  // on face abd
+  if (!f_c || !f_d) return split;
+  split.tets.push_back({corners[a], cuts[0].near_a, *f_c, *f_d});
+  split.tets.push_back({corners[b], cuts[0].near_b, *f_c, *f_d});
+  // The rest is an octahedron with opposite pairs (a, b), (c, f_d), (d, f_c); split it
+  // around whichever inner axis gives the better tets.
+  auto [around_c, quality_c] =
+      OctahedronAround(corners[c], *f_d, {corners[a], *f_c, corners[b], corners[d]}, rest);
+  auto [around_d, quality_d] =
+      OctahedronAround(corners[d], *f_c, {corners[a], *f_d, corners[b], corners[c]}, rest);
+  const std::vector<mesh::TetVertices>& best = quality_c >= quality_d ? around_c : around_d;
+  if (best.empty()) return TetSplit{};
+  split.tets.insert(split.tets.end(), best.begin(), best.end());
+  split.cut_case = CutCase::kCrackOneEdge;
+  return split;
+}
+
+// Case iv: two edges at a corner cut, the tip's path through the two faces at the third.
+TetSplit SplitCrackTwoEdges(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                            const FacePointOn& face_point,
+                            const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  TetSplit split;
+  // Case iv: edges (a, b) and (a, c) cut; the tip path crossed faces abd and acd.
+  std::array<int, 4> count{};
+  for (const EdgeCut& cut : cuts) {
+    ++count[cut.corner_a];
+    ++count[cut.corner_b];
+  }
+  const auto shared = std::find(count.begin(), count.end(), 2);
+  if (shared == count.end()) return split;
+  const int a = static_cast<int>(shared - count.begin());
+  const int b = cuts[0].corner_a == a ? cuts[0].corner_b : cuts[0].corner_a;
+  const int c = cuts[1].corner_a == a ? cuts[1].corner_b : cuts[1].corner_a;
+  const int d = 6 - a - b - c;
+  const std::optional<VertexId> f_b = face_point(c);  // on face abd
+  const std::optional<VertexId> f_c = face_point(b);  // on face acd
+  if (!f_b || !f_c) return split;
+  const VertexId ab_a = Near(cuts, a, b), ab_b = Near(cuts, b, a);
+  const VertexId ac_a = Near(cuts, a, c), ac_c = Near(cuts, c, a);
+  // Corner a's side is the pyramid over the crack quad; the other side is the tet at edge
+  // ad, a prism along bc and a pyramid at d. Only the quad on face abc is shared with a
+  // neighbour (key rule); the crack quad and the quad between prism and pyramid are inside
+  // this tet, so their diagonals are chosen for the best valid tets.
+  const std::array<VertexId, 4> crack = {*f_b, ab_a, ac_a, *f_c};
+  const std::array<VertexId, 4> inner = {corners[b], corners[c], *f_c, *f_b};
+  const double volume = std::abs(SignedVolume(corners, rest));
+  double best_quality = 0;
+  for (int choice = 0; choice < 4; ++choice) {
+    const VertexId crack_through = choice & 1 ? *f_b : ab_a;
+    const VertexId inner_through = choice & 2 ? corners[b] : corners[c];
+    const DiagonalChooser key_rule = KeyRule(cuts);
+    const DiagonalChooser choose = [&](const std::array<VertexId, 4>& q) {
+      // The crack quad appears with copies from either side; compare by cut point.
+      const auto same_quad = [&](const std::array<VertexId, 4>& r) {
+        return std::is_permutation(q.begin(), q.end(), r.begin());
+      };
+      const std::array<VertexId, 4> crack_far = {*f_b, ab_b, ac_c, *f_c};
+      if (same_quad(crack)) return crack_through;
+      if (same_quad(crack_far)) return crack_through == ab_a ? ab_b : crack_through;
+      if (same_quad(inner)) return inner_through;
+      return key_rule(q);
+    };
+    std::vector<mesh::TetVertices> tets;
+    SplitPyramid(corners[a], crack, choose, &tets);
+    tets.push_back({corners[a], corners[d], *f_b, *f_c});
+    if (!SplitPrism({corners[b], ab_b, *f_b}, {corners[c], ac_c, *f_c}, choose, &tets)) continue;
+    SplitPyramid(corners[d], inner, choose, &tets);
+    double total = 0, smallest = std::numeric_limits<double>::infinity();
+    for (const mesh::TetVertices& t : tets) {
+      const double v = std::abs(SignedVolume(t, rest));
+      total += v;
+      smallest = std::min(smallest, v);
+    }
+    // Overlapping (inverted) tets make the absolute volumes add up to more than the tet.
+    if (std::abs(total - volume) > 1e-10 * volume || !(smallest > best_quality)) continue;
+    best_quality = smallest;
+    split.tets = std::move(tets);
+  }
+  if (split.tets.empty()) return TetSplit{};
+  split.cut_case = CutCase::kCrackTwoEdges;
+  return split;
+}
+
+// Case v: three edges in a path cut, the tip's path through the two faces at its ends' edge.
+TetSplit SplitCrackThreeEdges(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
+                              const FacePointOn& face_point,
+                              const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  TetSplit split;
+  // Case v: the cut edges are a path a-b-c-d; the tip path crossed faces abd and acd.
+  std::array<int, 4> count{};
+  for (const EdgeCut& cut : cuts) {
+    ++count[cut.corner_a];
+    ++count[cut.corner_b];
+  }
+  int a = -1, d = -1;
+  for (int k = 0; k < 4; ++k) {
+    if (count[k] == 1) (a < 0 ? a : d) = k;
+    if (count[k] == 3 || count[k] == 0) return split;  // three edges around one corner
+  }
+  int b = -1;
+  for (const EdgeCut& cut : cuts) {
+    if (cut.corner_a == a) b = cut.corner_b;
+    if (cut.corner_b == a) b = cut.corner_a;
+  }
+  const int c = 6 - a - b - d;
+  if (b < 0 || FindCut(cuts, b, c) == nullptr || FindCut(cuts, c, d) == nullptr) return split;
+  const std::optional<VertexId> f_p = face_point(c);  // on face abd
+  const std::optional<VertexId> f_q = face_point(b);  // on face acd
+  if (!f_p || !f_q) return split;
+  const VertexId ab_a = Near(cuts, a, b), ab_b = Near(cuts, b, a);
+  const VertexId bc_b = Near(cuts, b, c), bc_c = Near(cuts, c, b);
+  const VertexId cd_c = Near(cuts, c, d), cd_d = Near(cuts, d, c);
+  const VertexId va = corners[a], vb = corners[b], vc = corners[c], vd = corners[d];
+  // The crack separates {a, c} from {b, d}; the two regions meet at the tet (a, d, fP, fQ)
+  // along edge ad, where the crack ends. Each region is split as a cone from one of its
+  // vertices, and the crack pentagon as a fan that both sides share.
+  const DiagonalChooser key_rule = KeyRule(cuts);
+  const std::array<Triangle, 2> on_abc = QuadTriangles({va, ab_a, bc_c, vc}, key_rule);
+  const std::array<Triangle, 2> on_bcd = QuadTriangles({vb, bc_b, cd_d, vd}, key_rule);
+  const std::array<VertexId, 5> crack_near_c = {*f_p, ab_a, bc_c, cd_c, *f_q};
+  const std::array<VertexId, 5> crack_near_b = {*f_p, ab_b, bc_b, cd_d, *f_q};
+  const double volume = std::abs(SignedVolume(corners, rest));
+  double best_quality = 0;
+  std::size_t best_count = std::numeric_limits<std::size_t>::max();
+  for (int fan = 0; fan < 5; ++fan) {
+    std::vector<Triangle> near_c = {on_abc[0],        on_abc[1],      {vc, bc_c, cd_c},
+                                    {vc, cd_c, *f_q}, {va, vc, *f_q}, {va, ab_a, *f_p},
+                                    {va, *f_p, *f_q}};
+    std::vector<Triangle> near_b = {{vb, ab_b, bc_b}, on_bcd[0],        on_bcd[1],
+                                    {cd_d, vd, *f_q}, {ab_b, vb, *f_p}, {vb, vd, *f_p},
+                                    {vd, *f_p, *f_q}};
+    for (int k = 1; k < 4; ++k) {
+      near_c.push_back(
+          {crack_near_c[fan], crack_near_c[(fan + k) % 5], crack_near_c[(fan + k + 1) % 5]});
+      near_b.push_back(
+          {crack_near_b[fan], crack_near_b[(fan + k) % 5], crack_near_b[(fan + k + 1) % 5]});
+    }
+    const std::array<VertexId, 7> apexes_c = {va, vc, ab_a, bc_c, cd_c, *f_p, *f_q};
+    const std::array<VertexId, 7> apexes_b = {vb, vd, ab_b, bc_b, cd_d, *f_p, *f_q};
+    for (const VertexId apex_c : apexes_c) {
+      for (const VertexId apex_b : apexes_b) {
+        std::vector<mesh::TetVertices> tets = Cone(apex_c, near_c);
+        const std::vector<mesh::TetVertices> far = Cone(apex_b, near_b);
+        tets.insert(tets.end(), far.begin(), far.end());
+        tets.push_back({va, vd, *f_p, *f_q});
+        if (tets.size() > best_count) continue;
+        double total = 0, smallest = std::numeric_limits<double>::infinity();
+        for (const mesh::TetVertices& t : tets) {
+          const double v = std::abs(SignedVolume(t, rest));
+          total += v;
+          smallest = std::min(smallest, v);
+        }
+        if (std::abs(total - volume) > 1e-10 * volume || !(smallest > 1e-12 * volume)) continue;
+        if (tets.size() == best_count && !(smallest > best_quality)) continue;
+        best_count = tets.size();
+        best_quality = smallest;
+        split.tets = std::move(tets);
+      }
+    }
+  }
+  if (split.tets.empty()) return TetSplit{};
+  split.cut_case = CutCase::kCrackThreeEdges;
+  return split;
+}
+
+}  // namespace
+
 TetSplit SplitCrackedTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts,
                          const std::array<FacePoint, 2>& face_points,
                          const std::function<Eigen::Vector3d(VertexId)>& rest) {
-  TetSplit split;
-  // The face point on the face opposite corner k.
-  auto face_point = [&](int opposite) -> std::optional<VertexId> {
+  const FacePointOn face_point = [&](int opposite) -> std::optional<VertexId> {
     for (const FacePoint& f : face_points) {
       if (f.face == opposite) return f.vertex;
     }
     return std::nullopt;
   };
-  if (cuts.size() == 1) {
-    // Case iii: edge (a, b) cut; the tip path crossed faces abc and abd.
-    const int a = cuts[0].corner_a, b = cuts[0].corner_b;
-    int c = -1, d = -1;
-    for (int k = 0; k < 4; ++k) {
-      if (k != a && k != b) (c < 0 ? c : d) = k;
-    }
-    const std::optional<VertexId> f_c = face_point(d);  // on face abc
-    const std::optional<VertexId> f_d = face_point(c);  // on face abd
-    if (!f_c || !f_d) return split;
-    split.tets.push_back({corners[a], cuts[0].near_a, *f_c, *f_d});
-    split.tets.push_back({corners[b], cuts[0].near_b, *f_c, *f_d});
-    // The rest is an octahedron with opposite pairs (a, b), (c, f_d), (d, f_c); split it
-    // around whichever inner axis gives the better tets.
-    auto [around_c, quality_c] =
-        OctahedronAround(corners[c], *f_d, {corners[a], *f_c, corners[b], corners[d]}, rest);
-    auto [around_d, quality_d] =
-        OctahedronAround(corners[d], *f_c, {corners[a], *f_d, corners[b], corners[c]}, rest);
-    const std::vector<mesh::TetVertices>& best = quality_c >= quality_d ? around_c : around_d;
-    if (best.empty()) return TetSplit{};
-    split.tets.insert(split.tets.end(), best.begin(), best.end());
-    split.cut_case = CutCase::kCrackOneEdge;
-  } else if (cuts.size() == 2) {
-    // Case iv: edges (a, b) and (a, c) cut; the tip path crossed faces abd and acd.
-    std::array<int, 4> count{};
-    for (const EdgeCut& cut : cuts) {
-      ++count[cut.corner_a];
-      ++count[cut.corner_b];
-    }
-    const auto shared = std::find(count.begin(), count.end(), 2);
-    if (shared == count.end()) return split;
-    const int a = static_cast<int>(shared - count.begin());
-    const int b = cuts[0].corner_a == a ? cuts[0].corner_b : cuts[0].corner_a;
-    const int c = cuts[1].corner_a == a ? cuts[1].corner_b : cuts[1].corner_a;
-    const int d = 6 - a - b - c;
-    const std::optional<VertexId> f_b = face_point(c);  // on face abd
-    const std::optional<VertexId> f_c = face_point(b);  // on face acd
-    if (!f_b || !f_c) return split;
-    const VertexId ab_a = Near(cuts, a, b), ab_b = Near(cuts, b, a);
-    const VertexId ac_a = Near(cuts, a, c), ac_c = Near(cuts, c, a);
-    // Corner a's side is the pyramid over the crack quad; the other side is the tet at edge
-    // ad, a prism along bc and a pyramid at d. Only the quad on face abc is shared with a
-    // neighbour (key rule); the crack quad and the quad between prism and pyramid are inside
-    // this tet, so their diagonals are chosen for the best valid tets.
-    const std::array<VertexId, 4> crack = {*f_b, ab_a, ac_a, *f_c};
-    const std::array<VertexId, 4> inner = {corners[b], corners[c], *f_c, *f_b};
-    const double volume = std::abs(SignedVolume(corners, rest));
-    double best_quality = 0;
-    for (int choice = 0; choice < 4; ++choice) {
-      const VertexId crack_through = choice & 1 ? *f_b : ab_a;
-      const VertexId inner_through = choice & 2 ? corners[b] : corners[c];
-      const DiagonalChooser key_rule = KeyRule(cuts);
-      const DiagonalChooser choose = [&](const std::array<VertexId, 4>& q) {
-        // The crack quad appears with copies from either side; compare by cut point.
-        const auto same_quad = [&](const std::array<VertexId, 4>& r) {
-          return std::is_permutation(q.begin(), q.end(), r.begin());
-        };
-        const std::array<VertexId, 4> crack_far = {*f_b, ab_b, ac_c, *f_c};
-        if (same_quad(crack)) return crack_through;
-        if (same_quad(crack_far)) return crack_through == ab_a ? ab_b : crack_through;
-        if (same_quad(inner)) return inner_through;
-        return key_rule(q);
-      };
-      std::vector<mesh::TetVertices> tets;
-      SplitPyramid(corners[a], crack, choose, &tets);
-      tets.push_back({corners[a], corners[d], *f_b, *f_c});
-      if (!SplitPrism({corners[b], ab_b, *f_b}, {corners[c], ac_c, *f_c}, choose, &tets)) continue;
-      SplitPyramid(corners[d], inner, choose, &tets);
-      double total = 0, smallest = std::numeric_limits<double>::infinity();
-      for (const mesh::TetVertices& t : tets) {
-        const double v = std::abs(SignedVolume(t, rest));
-        total += v;
-        smallest = std::min(smallest, v);
-      }
-      // Overlapping (inverted) tets make the absolute volumes add up to more than the tet.
-      if (std::abs(total - volume) > 1e-10 * volume || !(smallest > best_quality)) continue;
-      best_quality = smallest;
-      split.tets = std::move(tets);
-    }
-    if (split.tets.empty()) return TetSplit{};
-    split.cut_case = CutCase::kCrackTwoEdges;
-  } else if (cuts.size() == 3) {
-    // Case v: the cut edges are a path a-b-c-d; the tip path crossed faces abd and acd.
-    std::array<int, 4> count{};
-    for (const EdgeCut& cut : cuts) {
-      ++count[cut.corner_a];
-      ++count[cut.corner_b];
-    }
-    int a = -1, d = -1;
-    for (int k = 0; k < 4; ++k) {
-      if (count[k] == 1) (a < 0 ? a : d) = k;
-      if (count[k] == 3 || count[k] == 0) return split;  // three edges around one corner
-    }
-    int b = -1;
-    for (const EdgeCut& cut : cuts) {
-      if (cut.corner_a == a) b = cut.corner_b;
-      if (cut.corner_b == a) b = cut.corner_a;
-    }
-    const int c = 6 - a - b - d;
-    if (b < 0 || FindCut(cuts, b, c) == nullptr || FindCut(cuts, c, d) == nullptr) return split;
-    const std::optional<VertexId> f_p = face_point(c);  // on face abd
-    const std::optional<VertexId> f_q = face_point(b);  // on face acd
-    if (!f_p || !f_q) return split;
-    const VertexId ab_a = Near(cuts, a, b), ab_b = Near(cuts, b, a);
-    const VertexId bc_b = Near(cuts, b, c), bc_c = Near(cuts, c, b);
-    const VertexId cd_c = Near(cuts, c, d), cd_d = Near(cuts, d, c);
-    const VertexId va = corners[a], vb = corners[b], vc = corners[c], vd = corners[d];
-    // The crack separates {a, c} from {b, d}; the two regions meet at the tet (a, d, fP, fQ)
-    // along edge ad, where the crack ends. Each region is split as a cone from one of its
-    // vertices, and the crack pentagon as a fan that both sides share.
-    const DiagonalChooser key_rule = KeyRule(cuts);
-    const std::array<Triangle, 2> on_abc = QuadTriangles({va, ab_a, bc_c, vc}, key_rule);
-    const std::array<Triangle, 2> on_bcd = QuadTriangles({vb, bc_b, cd_d, vd}, key_rule);
-    const std::array<VertexId, 5> crack_near_c = {*f_p, ab_a, bc_c, cd_c, *f_q};
-    const std::array<VertexId, 5> crack_near_b = {*f_p, ab_b, bc_b, cd_d, *f_q};
-    const double volume = std::abs(SignedVolume(corners, rest));
-    double best_quality = 0;
-    std::size_t best_count = std::numeric_limits<std::size_t>::max();
-    for (int fan = 0; fan < 5; ++fan) {
-      std::vector<Triangle> near_c = {on_abc[0],        on_abc[1],      {vc, bc_c, cd_c},
-                                      {vc, cd_c, *f_q}, {va, vc, *f_q}, {va, ab_a, *f_p},
-                                      {va, *f_p, *f_q}};
-      std::vector<Triangle> near_b = {{vb, ab_b, bc_b}, on_bcd[0],        on_bcd[1],
-                                      {cd_d, vd, *f_q}, {ab_b, vb, *f_p}, {vb, vd, *f_p},
-                                      {vd, *f_p, *f_q}};
-      for (int k = 1; k < 4; ++k) {
-        near_c.push_back(
-            {crack_near_c[fan], crack_near_c[(fan + k) % 5], crack_near_c[(fan + k + 1) % 5]});
-        near_b.push_back(
-            {crack_near_b[fan], crack_near_b[(fan + k) % 5], crack_near_b[(fan + k + 1) % 5]});
-      }
-      const std::array<VertexId, 7> apexes_c = {va, vc, ab_a, bc_c, cd_c, *f_p, *f_q};
-      const std::array<VertexId, 7> apexes_b = {vb, vd, ab_b, bc_b, cd_d, *f_p, *f_q};
-      for (const VertexId apex_c : apexes_c) {
-        for (const VertexId apex_b : apexes_b) {
-          std::vector<mesh::TetVertices> tets = Cone(apex_c, near_c);
-          const std::vector<mesh::TetVertices> far = Cone(apex_b, near_b);
-          tets.insert(tets.end(), far.begin(), far.end());
-          tets.push_back({va, vd, *f_p, *f_q});
-          if (tets.size() > best_count) continue;
-          double total = 0, smallest = std::numeric_limits<double>::infinity();
-          for (const mesh::TetVertices& t : tets) {
-            const double v = std::abs(SignedVolume(t, rest));
-            total += v;
-            smallest = std::min(smallest, v);
-          }
-          if (std::abs(total - volume) > 1e-10 * volume || !(smallest > 1e-12 * volume)) continue;
-          if (tets.size() == best_count && !(smallest > best_quality)) continue;
-          best_count = tets.size();
-          best_quality = smallest;
-          split.tets = std::move(tets);
-        }
-      }
-    }
-    if (split.tets.empty()) return TetSplit{};
-    split.cut_case = CutCase::kCrackThreeEdges;
+  switch (cuts.size()) {
+    case 1:
+      return SplitCrackOneEdge(corners, cuts, face_point, rest);
+    case 2:
+      return SplitCrackTwoEdges(corners, cuts, face_point, rest);
+    case 3:
+      return SplitCrackThreeEdges(corners, cuts, face_point, rest);
+    default:
+      return TetSplit{};
   }
-  return split;
 }
 
 TetSplit SplitCompletelyCutTet(const mesh::TetVertices& corners, const std::vector<EdgeCut>& cuts) {
