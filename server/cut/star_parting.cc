@@ -52,86 +52,12 @@ PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<Vert
     if (!mesh->IsAlive(o)) continue;
     const std::vector<TetId> star = TetsAround(*mesh, o);
     if (star.empty()) continue;
-    // Parts: tets joined through faces at o that are not on the crack.
-    std::vector<int> parent(star.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    absl::flat_hash_map<FaceKey, int, FaceKeyHash> first_with;
-    for (int i = 0; i < static_cast<int>(star.size()); ++i) {
-      const mesh::TetVertices& t = mesh->tet(star[i]);
-      for (const auto& f : mesh::kTetFaces) {
-        const FaceKey key = OriginKey(t[f[0]], t[f[1]], t[f[2]]);
-        if (std::find(key.begin(), key.end(), o) == key.end() || on_crack(key)) continue;
-        const auto [it, inserted] = first_with.try_emplace(key, i);
-        if (!inserted) parent[Root(parent, i)] = Root(parent, it->second);
-      }
-    }
-    absl::flat_hash_map<int, std::vector<int>> by_root;
-    for (int i = 0; i < static_cast<int>(star.size()); ++i) by_root[Root(parent, i)].push_back(i);
-    std::vector<std::vector<int>> parts;
-    for (auto& [root, members] : by_root) parts.push_back(std::move(members));
-    std::sort(parts.begin(), parts.end(), [&](const auto& a, const auto& b) {
-      return a.size() != b.size() ? a.size() > b.size() : star[a.front()] < star[b.front()];
-    });
-    // The id each tet uses for o now.
-    const auto id_in = [&](int i) {
-      for (const VertexId v : mesh->tet(star[i])) {
-        if (Origin(v) == o) return v;
-      }
-      KERF_CHECK(false);
-      return o;
-    };
-    // Each part keeps the id most of its tets use (larger parts choose first), so no tet moves
-    // unless parts merge. A part left with none takes the origin if no part kept it, else a new
-    // copy, either starting where its tets had the vertex.
     const std::vector<VertexId> ids = Ids(o);
-    std::vector<VertexId> assigned(parts.size(), kNone), had(parts.size(), kNone);
-    absl::flat_hash_set<VertexId> taken;
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-      absl::flat_hash_map<VertexId, int> uses;
-      for (const int i : parts[p]) {
-        if (!is_fresh(star[i])) ++uses[id_in(i)];
-      }
-      if (uses.empty()) {
-        for (const int i : parts[p]) ++uses[id_in(i)];
-      }
-      int most = 0, most_free = 0;
-      for (const auto& [id, n] : uses) {
-        if (n > most || (n == most && id < had[p])) most = n, had[p] = id;
-        if (!taken.contains(id) && (n > most_free || (n == most_free && id < assigned[p]))) {
-          most_free = n;
-          assigned[p] = id;
-        }
-      }
-      if (assigned[p] != kNone) taken.insert(assigned[p]);
-    }
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-      if (assigned[p] != kNone) continue;
-      if (!taken.contains(o)) {
-        assigned[p] = o;
-        KERF_CHECK(
-            mesh->MoveVertex(o, mesh->rest_position(had[p]), mesh->current_position(had[p])).ok());
-        changes.made.push_back({o, had[p]});
-      } else {
-        assigned[p] = mesh->AddVertex(mesh->rest_position(had[p]), mesh->current_position(had[p]));
-        origin_[assigned[p]] = o;
-        copies_[o].push_back(assigned[p]);
-        changes.made.push_back({assigned[p], had[p]});
-      }
-      taken.insert(assigned[p]);
-    }
-    if (!taken.contains(o)) {
-      // Every part kept a copy: the largest takes the origin (the key the crack names it by)
-      // in its copy's place, and the copy goes.
-      const VertexId copy = assigned[0];
-      KERF_CHECK(mesh->MoveVertex(o, mesh->rest_position(copy), mesh->current_position(copy)).ok());
-      changes.made.push_back({o, copy});
-      taken.erase(copy);
-      taken.insert(o);
-      assigned[0] = o;
-    }
+    const std::vector<std::vector<int>> parts = PartsOfStar(*mesh, o, star, on_crack);
+    const std::vector<VertexId> assigned = IdsOfParts(mesh, o, star, parts, is_fresh, &changes);
     for (std::size_t p = 0; p < parts.size(); ++p) {
       for (const int i : parts[p]) {
-        const VertexId now = id_in(i);
+        const VertexId now = IdIn(*mesh, star[i], o);
         if (now == assigned[p]) continue;
         mesh::TetVertices corners = mesh->tet(star[i]);
         std::replace(corners.begin(), corners.end(), now, assigned[p]);
@@ -143,7 +69,10 @@ PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<Vert
       }
     }
     for (const VertexId id : ids) {
-      if (id == o || taken.contains(id) || !mesh->IsAlive(id)) continue;
+      if (id == o || !mesh->IsAlive(id) ||
+          std::find(assigned.begin(), assigned.end(), id) != assigned.end()) {
+        continue;
+      }
       KERF_CHECK(mesh->TetsAround(id).empty());
       KERF_CHECK(mesh->RemoveVertex(id).ok());
       changes.removed.push_back(id);
@@ -152,6 +81,119 @@ PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<Vert
     }
   }
   return changes;
+}
+
+VertexId VertexParting::IdIn(const mesh::TetMesh& mesh, TetId t, VertexId origin) const {
+  for (const VertexId v : mesh.tet(t)) {
+    if (Origin(v) == origin) return v;
+  }
+  KERF_CHECK(false);
+  return origin;
+}
+
+std::vector<std::vector<int>> VertexParting::PartsOfStar(
+    const mesh::TetMesh& mesh, VertexId o, const std::vector<TetId>& star,
+    const std::function<bool(const FaceKey&)>& on_crack) const {
+  // The faces at o that are not on the crack, each with the star's tet it is of: a tet joins
+  // the others with the same face.
+  std::vector<std::pair<FaceKey, int>> faces;
+  for (int i = 0; i < static_cast<int>(star.size()); ++i) {
+    const mesh::TetVertices& t = mesh.tet(star[i]);
+    for (const auto& f : mesh::kTetFaces) {
+      const FaceKey key = OriginKey(t[f[0]], t[f[1]], t[f[2]]);
+      if (std::find(key.begin(), key.end(), o) != key.end() && !on_crack(key)) {
+        faces.emplace_back(key, i);
+      }
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<int> parent(star.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (std::size_t k = 1; k < faces.size(); ++k) {
+    if (faces[k].first == faces[k - 1].first) {
+      parent[Root(parent, faces[k].second)] = Root(parent, faces[k - 1].second);
+    }
+  }
+  std::vector<std::pair<int, int>> by_root;  // (root, member)
+  for (int i = 0; i < static_cast<int>(star.size()); ++i) by_root.emplace_back(Root(parent, i), i);
+  std::sort(by_root.begin(), by_root.end());
+  std::vector<std::vector<int>> parts;
+  for (std::size_t k = 0; k < by_root.size(); ++k) {
+    if (k == 0 || by_root[k].first != by_root[k - 1].first) parts.emplace_back();
+    parts.back().push_back(by_root[k].second);
+  }
+  // Larger parts first; among equals, the one with the lower first tet.
+  std::sort(parts.begin(), parts.end(), [&](const auto& a, const auto& b) {
+    return a.size() != b.size() ? a.size() > b.size() : star[a.front()] < star[b.front()];
+  });
+  return parts;
+}
+
+std::vector<VertexId> VertexParting::IdsOfParts(mesh::TetMesh* mesh, VertexId o,
+                                                const std::vector<TetId>& star,
+                                                const std::vector<std::vector<int>>& parts,
+                                                const std::function<bool(TetId)>& is_fresh,
+                                                PartingChanges* changes) {
+  // Each part keeps the id most of its tets use (larger parts choose first), so no tet moves
+  // unless parts merge. A part left with none takes the origin if no part kept it, else a new
+  // copy, either starting where its tets had the vertex.
+  std::vector<VertexId> assigned(parts.size(), kNone), had(parts.size(), kNone);
+  std::vector<VertexId> taken;
+  const auto is_taken = [&](VertexId v) {
+    return std::find(taken.begin(), taken.end(), v) != taken.end();
+  };
+  std::vector<std::pair<VertexId, int>> uses;  // id, tets of the part using it
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    uses.clear();
+    const auto count = [&](bool all) {
+      for (const int i : parts[p]) {
+        if (!all && is_fresh(star[i])) continue;
+        const VertexId id = IdIn(*mesh, star[i], o);
+        const auto it =
+            std::find_if(uses.begin(), uses.end(), [&](const auto& u) { return u.first == id; });
+        if (it == uses.end()) {
+          uses.emplace_back(id, 1);
+        } else {
+          ++it->second;
+        }
+      }
+    };
+    count(/*all=*/false);
+    if (uses.empty()) count(/*all=*/true);
+    int most = 0, most_free = 0;
+    for (const auto& [id, n] : uses) {
+      if (n > most || (n == most && id < had[p])) most = n, had[p] = id;
+      if (!is_taken(id) && (n > most_free || (n == most_free && id < assigned[p]))) {
+        most_free = n;
+        assigned[p] = id;
+      }
+    }
+    if (assigned[p] != kNone) taken.push_back(assigned[p]);
+  }
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    if (assigned[p] != kNone) continue;
+    if (!is_taken(o)) {
+      assigned[p] = o;
+      KERF_CHECK(
+          mesh->MoveVertex(o, mesh->rest_position(had[p]), mesh->current_position(had[p])).ok());
+      changes->made.push_back({o, had[p]});
+    } else {
+      assigned[p] = mesh->AddVertex(mesh->rest_position(had[p]), mesh->current_position(had[p]));
+      origin_[assigned[p]] = o;
+      copies_[o].push_back(assigned[p]);
+      changes->made.push_back({assigned[p], had[p]});
+    }
+    taken.push_back(assigned[p]);
+  }
+  if (!is_taken(o)) {
+    // Every part kept a copy: the largest takes the origin (the key the crack names it by) in
+    // its copy's place, and the copy goes.
+    const VertexId copy = assigned[0];
+    KERF_CHECK(mesh->MoveVertex(o, mesh->rest_position(copy), mesh->current_position(copy)).ok());
+    changes->made.push_back({o, copy});
+    assigned[0] = o;
+  }
+  return assigned;
 }
 
 bool VertexParting::RemoveIfUnused(mesh::TetMesh* mesh, VertexId origin) {

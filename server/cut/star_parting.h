@@ -71,6 +71,20 @@ class VertexParting {
   bool RemoveIfUnused(mesh::TetMesh* mesh, mesh::VertexId origin);
 
  private:
+  // The id `t` uses for `origin` (it must use one).
+  mesh::VertexId IdIn(const mesh::TetMesh& mesh, mesh::TetId t, mesh::VertexId origin) const;
+  // The parts of the star of `o` (indices into `star`): tets joined through faces at o that are
+  // not on the crack, larger parts first.
+  std::vector<std::vector<int>> PartsOfStar(
+      const mesh::TetMesh& mesh, mesh::VertexId o, const std::vector<mesh::TetId>& star,
+      const std::function<bool(const FaceKey&)>& on_crack) const;
+  // The id each part uses for `o` (see the class comment), making the copies that takes.
+  std::vector<mesh::VertexId> IdsOfParts(mesh::TetMesh* mesh, mesh::VertexId o,
+                                         const std::vector<mesh::TetId>& star,
+                                         const std::vector<std::vector<int>>& parts,
+                                         const std::function<bool(mesh::TetId)>& is_fresh,
+                                         PartingChanges* changes);
+
   absl::flat_hash_map<mesh::VertexId, mesh::VertexId> origin_;               // copy -> origin
   absl::flat_hash_map<mesh::VertexId, std::vector<mesh::VertexId>> copies_;  // origin -> copies
 };
