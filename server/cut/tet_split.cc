@@ -169,6 +169,16 @@ void Append(std::vector<mesh::TetVertices> tets, bool corner0_side, TetSplit* sp
 
 namespace {
 
+// How many of the cut edges meet at each corner.
+std::array<int, 4> CutsAtCorners(const std::vector<EdgeCut>& cuts) {
+  std::array<int, 4> count{};
+  for (const EdgeCut& cut : cuts) {
+    ++count[cut.corner_a];
+    ++count[cut.corner_b];
+  }
+  return count;
+}
+
 // The face point on the face opposite a corner, if the tip's path crossed it.
 using FacePointOn = std::function<std::optional<VertexId>(int opposite)>;
 
@@ -207,11 +217,7 @@ TetSplit SplitCrackTwoEdges(const mesh::TetVertices& corners, const std::vector<
                             const std::function<Eigen::Vector3d(VertexId)>& rest) {
   TetSplit split;
   // Case iv: edges (a, b) and (a, c) cut; the tip path crossed faces abd and acd.
-  std::array<int, 4> count{};
-  for (const EdgeCut& cut : cuts) {
-    ++count[cut.corner_a];
-    ++count[cut.corner_b];
-  }
+  const std::array<int, 4> count = CutsAtCorners(cuts);
   const auto shared = std::find(count.begin(), count.end(), 2);
   if (shared == count.end()) return split;
   const int a = static_cast<int>(shared - count.begin());
@@ -273,11 +279,7 @@ TetSplit SplitCrackThreeEdges(const mesh::TetVertices& corners, const std::vecto
                               const std::function<Eigen::Vector3d(VertexId)>& rest) {
   TetSplit split;
   // Case v: the cut edges are a path a-b-c-d; the tip path crossed faces abd and acd.
-  std::array<int, 4> count{};
-  for (const EdgeCut& cut : cuts) {
-    ++count[cut.corner_a];
-    ++count[cut.corner_b];
-  }
+  const std::array<int, 4> count = CutsAtCorners(cuts);
   int a = -1, d = -1;
   for (int k = 0; k < 4; ++k) {
     if (count[k] == 1) (a < 0 ? a : d) = k;
