@@ -1,11 +1,11 @@
 #include "cut/tet_grid.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <limits>
 
 #include "absl/strings/str_cat.h"
+#include "base/check.h"
 #include "mesh/mesh_quality.h"
 
 namespace kerf::cut {
@@ -101,7 +101,7 @@ void TetGrid::Unregister(TetId t) {
   absl::InlinedVector<Entry, 6>& list = cells_[cell_of_[Index(t)]];
   const auto it =
       std::find_if(list.begin(), list.end(), [&](const Entry& e) { return e.tet == t; });
-  assert(it != list.end());
+  KERF_CHECK(it != list.end());
   *it = list.back();
   list.pop_back();
   cell_of_[Index(t)] = kUnregistered;

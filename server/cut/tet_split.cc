@@ -3,11 +3,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <utility>
+
+#include "base/check.h"
 
 namespace kerf::cut {
 namespace {
@@ -78,8 +79,8 @@ bool SplitPrism(std::array<VertexId, 3> bottom, std::array<VertexId, 3> top,
 
 void SplitPrism(const std::array<VertexId, 3>& bottom, const std::array<VertexId, 3>& top,
                 const std::vector<EdgeCut>& cuts, std::vector<mesh::TetVertices>* out) {
-  [[maybe_unused]] const bool split = SplitPrism(bottom, top, KeyRule(cuts), out);
-  assert(split);  // the key rule is never cyclic
+  const bool split = SplitPrism(bottom, top, KeyRule(cuts), out);
+  KERF_CHECK(split);  // the key rule is never cyclic
 }
 
 // The two tets of the pyramid with this apex over the quad q (in cyclic order).
@@ -154,7 +155,7 @@ const EdgeCut* FindCut(const std::vector<EdgeCut>& cuts, int i, int j) {
 // The copy of edge (i, j)'s cut point on corner i's side.
 VertexId Near(const std::vector<EdgeCut>& cuts, int i, int j) {
   const EdgeCut* cut = FindCut(cuts, i, j);
-  assert(cut != nullptr);
+  KERF_CHECK(cut != nullptr);
   return cut->corner_a == i ? cut->near_a : cut->near_b;
 }
 
@@ -510,7 +511,7 @@ TetSplit SplitAsStar(const mesh::TetVertices& corners, const std::vector<EdgeCut
 }
 
 TetSplit SplitAtClosedCut(const mesh::TetVertices& corners, const EdgeCut& cut) {
-  assert(cut.near_a == cut.near_b);
+  KERF_CHECK(cut.near_a == cut.near_b);
   TetSplit split;
   split.cut_case = CutCase::kSplitEdge;
   for (const int replaced : {cut.corner_a, cut.corner_b}) {
