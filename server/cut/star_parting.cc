@@ -94,34 +94,23 @@ VertexId VertexParting::IdIn(const mesh::TetMesh& mesh, TetId t, VertexId origin
 std::vector<std::vector<int>> VertexParting::PartsOfStar(
     const mesh::TetMesh& mesh, VertexId o, const std::vector<TetId>& star,
     const std::function<bool(const FaceKey&)>& on_crack) const {
-  // The faces at o that are not on the crack, each with the star's tet it is of: a tet joins
-  // the others with the same face.
-  std::vector<std::pair<FaceKey, int>> faces;
+  // Tets joined through faces at o that are not on the crack.
+  std::vector<int> parent(star.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  absl::flat_hash_map<FaceKey, int, FaceKeyHash> first_with;
   for (int i = 0; i < static_cast<int>(star.size()); ++i) {
     const mesh::TetVertices& t = mesh.tet(star[i]);
     for (const auto& f : mesh::kTetFaces) {
       const FaceKey key = OriginKey(t[f[0]], t[f[1]], t[f[2]]);
-      if (std::find(key.begin(), key.end(), o) != key.end() && !on_crack(key)) {
-        faces.emplace_back(key, i);
-      }
+      if (std::find(key.begin(), key.end(), o) == key.end() || on_crack(key)) continue;
+      const auto [it, inserted] = first_with.try_emplace(key, i);
+      if (!inserted) parent[Root(parent, i)] = Root(parent, it->second);
     }
   }
-  std::sort(faces.begin(), faces.end());
-  std::vector<int> parent(star.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  for (std::size_t k = 1; k < faces.size(); ++k) {
-    if (faces[k].first == faces[k - 1].first) {
-      parent[Root(parent, faces[k].second)] = Root(parent, faces[k - 1].second);
-    }
-  }
-  std::vector<std::pair<int, int>> by_root;  // (root, member)
-  for (int i = 0; i < static_cast<int>(star.size()); ++i) by_root.emplace_back(Root(parent, i), i);
-  std::sort(by_root.begin(), by_root.end());
+  absl::flat_hash_map<int, std::vector<int>> by_root;
+  for (int i = 0; i < static_cast<int>(star.size()); ++i) by_root[Root(parent, i)].push_back(i);
   std::vector<std::vector<int>> parts;
-  for (std::size_t k = 0; k < by_root.size(); ++k) {
-    if (k == 0 || by_root[k].first != by_root[k - 1].first) parts.emplace_back();
-    parts.back().push_back(by_root[k].second);
-  }
+  for (auto& [root, members] : by_root) parts.push_back(std::move(members));
   // Larger parts first; among equals, the one with the lower first tet.
   std::sort(parts.begin(), parts.end(), [&](const auto& a, const auto& b) {
     return a.size() != b.size() ? a.size() > b.size() : star[a.front()] < star[b.front()];
@@ -138,41 +127,28 @@ std::vector<VertexId> VertexParting::IdsOfParts(mesh::TetMesh* mesh, VertexId o,
   // unless parts merge. A part left with none takes the origin if no part kept it, else a new
   // copy, either starting where its tets had the vertex.
   std::vector<VertexId> assigned(parts.size(), kNone), had(parts.size(), kNone);
-  std::vector<VertexId> taken;
-  const auto is_taken = [&](VertexId v) {
-    return std::find(taken.begin(), taken.end(), v) != taken.end();
-  };
-  std::vector<std::pair<VertexId, int>> uses;  // id, tets of the part using it
+  absl::flat_hash_set<VertexId> taken;
   for (std::size_t p = 0; p < parts.size(); ++p) {
-    uses.clear();
-    const auto count = [&](bool all) {
-      for (const int i : parts[p]) {
-        if (!all && is_fresh(star[i])) continue;
-        const VertexId id = IdIn(*mesh, star[i], o);
-        const auto it =
-            std::find_if(uses.begin(), uses.end(), [&](const auto& u) { return u.first == id; });
-        if (it == uses.end()) {
-          uses.emplace_back(id, 1);
-        } else {
-          ++it->second;
-        }
-      }
-    };
-    count(/*all=*/false);
-    if (uses.empty()) count(/*all=*/true);
+    absl::flat_hash_map<VertexId, int> uses;
+    for (const int i : parts[p]) {
+      if (!is_fresh(star[i])) ++uses[IdIn(*mesh, star[i], o)];
+    }
+    if (uses.empty()) {
+      for (const int i : parts[p]) ++uses[IdIn(*mesh, star[i], o)];
+    }
     int most = 0, most_free = 0;
     for (const auto& [id, n] : uses) {
       if (n > most || (n == most && id < had[p])) most = n, had[p] = id;
-      if (!is_taken(id) && (n > most_free || (n == most_free && id < assigned[p]))) {
+      if (!taken.contains(id) && (n > most_free || (n == most_free && id < assigned[p]))) {
         most_free = n;
         assigned[p] = id;
       }
     }
-    if (assigned[p] != kNone) taken.push_back(assigned[p]);
+    if (assigned[p] != kNone) taken.insert(assigned[p]);
   }
   for (std::size_t p = 0; p < parts.size(); ++p) {
     if (assigned[p] != kNone) continue;
-    if (!is_taken(o)) {
+    if (!taken.contains(o)) {
       assigned[p] = o;
       KERF_CHECK(
           mesh->MoveVertex(o, mesh->rest_position(had[p]), mesh->current_position(had[p])).ok());
@@ -183,9 +159,9 @@ std::vector<VertexId> VertexParting::IdsOfParts(mesh::TetMesh* mesh, VertexId o,
       copies_[o].push_back(assigned[p]);
       changes->made.push_back({assigned[p], had[p]});
     }
-    taken.push_back(assigned[p]);
+    taken.insert(assigned[p]);
   }
-  if (!is_taken(o)) {
+  if (!taken.contains(o)) {
     // Every part kept a copy: the largest takes the origin (the key the crack names it by) in
     // its copy's place, and the copy goes.
     const VertexId copy = assigned[0];
