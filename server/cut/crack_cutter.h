@@ -139,13 +139,14 @@ class CrackCutter {
   double StiffnessScale(mesh::TetId t) const;
 
  private:
+  static constexpr mesh::VertexId kNoVertex{0xffffffffu};  // a point not made into a vertex yet
   struct EdgePoint {
     double fraction;  // from the lower id
-    mesh::VertexId vertex{0xffffffffu};
+    mesh::VertexId vertex = kNoVertex;
   };
   struct FacePoint {
     Eigen::Vector3d barycentric;  // on the face key's vertices
-    mesh::VertexId vertex{0xffffffffu};
+    mesh::VertexId vertex = kNoVertex;
   };
   // A tet the blade is in (progressive), standing in the mesh as its temporary pieces.
   struct OpenTet {

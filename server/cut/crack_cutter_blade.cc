@@ -15,8 +15,6 @@ using mesh::Index;
 using mesh::TetId;
 using mesh::VertexId;
 
-constexpr VertexId kNoVertex{0xffffffffu};
-
 }  // namespace
 
 absl::flat_hash_map<TetId, CrackCutter::BladeIn> CrackCutter::BladeUnitsAt(
@@ -64,19 +62,19 @@ void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& 
   for (const auto& [key, fraction] : left) {
     std::vector<TetId> around;
     const auto [low, high] = EdgeEnds(key);
-    const auto point = edge_points_.find(key);
     if (!advancing_.contains(key)) {
       RecordEdgeCrossing(low, high, fraction, &around);
     } else {
       // The crack's front advanced along the edge: its point moves there (its vertex went when
       // the blade's point stood in for it), or the far corner snaps.
-      KERF_CHECK(point->second.vertex == kNoVertex);
+      EdgePoint& point = edge_points_.at(key);
+      KERF_CHECK(point.vertex == kNoVertex);
       const double share = SnapShare(std::array<VertexId, 2>{low, high});
       around = UnitsAround({low, high});
       if (std::min(fraction, 1 - fraction) < share) {
         Snap(fraction <= 0.5 ? low : high, &around);
       } else {
-        point->second = {fraction};
+        point = {fraction};
       }
     }
     Join(around);

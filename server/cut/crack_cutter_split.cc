@@ -12,8 +12,6 @@ using mesh::Index;
 using mesh::TetId;
 using mesh::VertexId;
 
-constexpr VertexId kNoVertex{0xffffffffu};
-
 }  // namespace
 
 void CrackCutter::SplitUnits(std::vector<TetId> units,
@@ -275,6 +273,12 @@ int CrackCutter::TableCase(const mesh::TetVertices& corners, const BladeIn& blad
 
 std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners,
                                                 const BladeIn* blade) {
+  // The blade's point on an edge, if it makes one there.
+  const auto blade_fraction = [&](EdgeKey edge) -> std::optional<double> {
+    if (blade == nullptr) return std::nullopt;
+    const auto at = blade->edges.find(edge);
+    return at == blade->edges.end() ? std::nullopt : std::optional<double>(at->second);
+  };
   std::array<FacePoints, 4> points;
   for (int k = 0; k < 4; ++k) {
     FacePoints& p = points[k];
@@ -285,12 +289,10 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
       const EdgeKey edge = MakeEdgeKey(a, b);
       // The blade's point first: where the crack's front advances along an edge with a point,
       // it stands in for that point.
-      if (const auto at =
-              blade ? blade->edges.find(edge) : decltype(blade->edges)::const_iterator{};
-          blade != nullptr && at != blade->edges.end()) {
+      if (const std::optional<double> at = blade_fraction(edge)) {
         const auto [low, high] = EdgeEnds(edge);
-        p.on_edge[j] = TemporaryVertex(EdgePlace(edge), {low, high, low, low},
-                                       {1 - at->second, at->second, 0, 0});
+        p.on_edge[j] =
+            TemporaryVertex(EdgePlace(edge), {low, high, low, low}, {1 - *at, *at, 0, 0});
         temporary = true;
       } else if (edge_points_.contains(edge)) {
         p.on_edge[j] = EdgePointVertex(a, b);
@@ -313,11 +315,9 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
       for (int j = 0; j < 3; ++j) {
         const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
         const EdgeKey edge = MakeEdgeKey(a, b);
-        const auto moving =
-            blade ? blade->edges.find(edge) : decltype(blade->edges)::const_iterator{};
-        const double fraction = blade != nullptr && moving != blade->edges.end()
-                                    ? moving->second
-                                    : edge_points_.at(edge).fraction;
+        // The blade's point, else the edge's (value_or would look the edge's up either way).
+        const std::optional<double> moving = blade_fraction(edge);
+        const double fraction = moving ? *moving : edge_points_.at(edge).fraction;
         const auto [low, high] = EdgeEnds(edge);
         for (int i = 0; i < 3; ++i) {
           if (key[i] == low) weights[i] += (1 - fraction) / 3;
