@@ -122,16 +122,28 @@ absl::Status TetGrid::RefreshTopology() {
     ++last_refresh_count_;
   }
   synced_ = mesh_->change_log().Mark();
+  std::vector<VertexId> moved;
+  for (const VertexId v : changes->moved_vertices) {
+    if (mesh_->IsAlive(v)) moved.push_back(v);
+  }
+  RegisterAgainAround(moved);
   return absl::OkStatus();
 }
 
 absl::Status TetGrid::Refresh() {
   if (absl::Status s = RefreshTopology(); !s.ok()) return s;
+  std::vector<VertexId> all;
+  for (const VertexId v : mesh_->vertices()) all.push_back(v);
+  RegisterAgainAround(all);
+  return absl::OkStatus();
+}
+
+void TetGrid::RegisterAgainAround(std::span<const VertexId> vertices) {
   // A vertex that moved farther than the margin from its reference gets a new reference, and
   // every tet around it is registered again.
   const auto current = mesh_->current_positions();
   std::vector<TetId> stale;
-  for (const VertexId v : mesh_->vertices()) {
+  for (const VertexId v : vertices) {
     if ((current[Index(v)] - registered_at_[Index(v)]).norm() <= margin_) continue;
     registered_at_[Index(v)] = current[Index(v)];
     for (const TetId t : mesh_->TetsAround(v)) stale.push_back(t);
@@ -143,7 +155,6 @@ absl::Status TetGrid::Refresh() {
     Register(t);
     ++last_refresh_count_;
   }
-  return absl::OkStatus();
 }
 
 std::vector<TetId> TetGrid::Candidates(const Eigen::Vector3d& low,

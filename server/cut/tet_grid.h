@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "absl/container/inlined_vector.h"
@@ -32,8 +33,9 @@ class TetGrid {
   // tet. The mesh must outlive the grid. O(tets).
   static absl::StatusOr<TetGrid> Build(const mesh::TetMesh& mesh, double cell_size, double margin);
 
-  // Registers the tets the mesh added and forgets those it removed since the last refresh.
-  // O(tets changed): cheap enough for every blade pose.
+  // Registers the tets the mesh added and forgets those it removed since the last refresh, and
+  // those around vertices it moved (TetMesh::MoveVertex) beyond the margin. O(tets changed):
+  // cheap enough for every blade pose.
   absl::Status RefreshTopology();
 
   // Also follows the deformation: re-registers the tets around vertices that moved beyond
@@ -67,6 +69,9 @@ class TetGrid {
   }
   void Register(mesh::TetId t);
   void Unregister(mesh::TetId t);
+  // Registers again the tets around those of `vertices` farther than the margin from their
+  // reference, which they take as their new one.
+  void RegisterAgainAround(std::span<const mesh::VertexId> vertices);
 
   const mesh::TetMesh* mesh_;
   double cell_size_ = 0;

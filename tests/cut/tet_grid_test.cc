@@ -116,6 +116,22 @@ TEST(TetGrid, RefreshOnlyTouchesTetsAroundVerticesThatMovedBeyondTheMargin) {
   EXPECT_EQ(grid.last_refresh_count(), m.TetsAround(v).size());
 }
 
+TEST(TetGrid, RefreshTopologyFollowsVerticesTheMeshMoved) {
+  // A temporary point of a progressive cut moves with the blade (TetMesh::MoveVertex) between
+  // physics steps: the tets around it are found where it went, without a full Refresh.
+  mesh::TetMesh m = Lattice();
+  TetGrid grid = *TetGrid::Build(m, 0.01, 0.002);
+  const VertexId v{100};
+  const Eigen::Vector3d there = m.current_position(v) + Eigen::Vector3d(0.006, 0.004, 0);
+  ASSERT_TRUE(m.MoveVertex(v, there, there).ok());
+  ASSERT_TRUE(grid.RefreshTopology().ok());
+  EXPECT_EQ(grid.last_refresh_count(), m.TetsAround(v).size());
+  const std::vector<TetId> near = grid.Candidates(there, there);
+  for (const TetId t : m.TetsAround(v)) {
+    EXPECT_NE(std::find(near.begin(), near.end(), t), near.end()) << mesh::Index(t);
+  }
+}
+
 TEST(TetGrid, QueriesListFewTetsOfALargeMesh) {
   const mesh::TetMesh m = Lattice();  // 1440 tets
   const TetGrid grid = *TetGrid::Build(m, 0.01, 0.001);

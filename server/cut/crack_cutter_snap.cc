@@ -1,0 +1,120 @@
+// CrackCutter: the blade's crossings recorded as the crack's points, and snapping (see
+// crack_cutter.h).
+#include <algorithm>
+
+#include "cut/crack_cutter.h"
+#include "geometry/point_triangle_distance.h"
+#include "geometry/tet_measures.h"
+
+namespace kerf::cut {
+namespace {
+
+using mesh::Index;
+using mesh::TetId;
+using mesh::VertexId;
+
+}  // namespace
+
+void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* touched) {
+  for (const EdgeCrossing& c : found.edges) {
+    RecordEdgeCrossing(c.low, c.high, c.fraction, touched);
+  }
+  for (const FaceCrossing& c : found.faces) {
+    if (face_points_.contains(c.face)) continue;
+    const Eigen::Vector3d& b = c.barycentric;
+    int largest = 0, smallest = 0;
+    b.maxCoeff(&largest);
+    b.minCoeff(&smallest);
+    const double share = SnapShare(c.face);
+    if (b[largest] > 1 - share) {
+      Snap(c.face[largest], touched);
+    } else if (b[smallest] < share) {
+      // Beside the edge opposite the smallest weight: that edge's crossing.
+      const int i = (smallest + 1) % 3, j = (smallest + 2) % 3;
+      VertexId low = c.face[i], high = c.face[j];
+      double fraction = b[j] / (b[i] + b[j]);
+      if (Index(high) < Index(low)) std::swap(low, high), fraction = 1 - fraction;
+      RecordEdgeCrossing(low, high, fraction, touched);
+    } else {
+      face_points_[c.face] = {b};
+      const std::vector<TetId> units = UnitsAround({c.face[0], c.face[1], c.face[2]});
+      touched->insert(touched->end(), units.begin(), units.end());
+    }
+  }
+}
+
+void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fraction,
+                                     std::vector<TetId>* touched) {
+  const EdgeKey key = MakeEdgeKey(low, high);
+  if (edge_points_.contains(key)) return;
+  const double share = SnapShare(std::array<VertexId, 2>{low, high});
+  // The least snapping (the fraction at its minimum) moves no crossing for quality either.
+  const double sliver_share = snap_fraction_ > kMinSnapFraction ? kSliverSnapScale * share : 0;
+  const double from_corner = std::min(fraction, 1 - fraction);
+  const std::vector<TetId> units = UnitsAround({low, high});
+  if (from_corner < share ||
+      (from_corner < sliver_share && BisectionLeavesSliver(low, high, fraction, units))) {
+    Snap(fraction <= 0.5 ? low : high, touched);
+  } else {
+    edge_points_[key] = {fraction};
+    touched->insert(touched->end(), units.begin(), units.end());
+  }
+}
+
+bool CrackCutter::BisectionLeavesSliver(VertexId low, VertexId high, double fraction,
+                                        const std::vector<TetId>& units) const {
+  const Eigen::Vector3d point =
+      (1 - fraction) * mesh_->rest_position(low) + fraction * mesh_->rest_position(high);
+  for (const TetId u : units) {
+    const mesh::TetVertices corners = CornersOf(u);
+    std::array<Eigen::Vector3d, 4> x;
+    for (int k = 0; k < 4; ++k) x[k] = mesh_->rest_position(corners[k]);
+    for (int k = 0; k < 4; ++k) {
+      if (corners[k] != low && corners[k] != high) continue;
+      std::array<Eigen::Vector3d, 4> half = x;  // the half without corners[k]
+      half[k] = point;
+      if (geometry::MeasureTet(half[0], half[1], half[2], half[3]).min_dihedral_deg <
+          kSliverAngleDeg) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
+                                   const std::vector<TetId>& units, std::vector<TetId>* touched) {
+  absl::flat_hash_set<VertexId> seen;
+  for (const TetId u : units) {
+    const mesh::TetVertices corners = CornersOf(u), placed = PlacedCorners(u);
+    double edges = 0;
+    for (const auto& [i, j] : mesh::kTetEdges) {
+      edges += (mesh_->current_position(placed[i]) - mesh_->current_position(placed[j])).norm();
+    }
+    const double within = snap_fraction_ * edges / 6;
+    for (int k = 0; k < 4; ++k) {
+      const VertexId v = corners[k];
+      if (on_crack_.contains(v) || IsInnerPoint(v) || !seen.insert(v).second) continue;
+      const Eigen::Vector3d& x = mesh_->current_position(placed[k]);
+      const double distance =
+          std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),
+                   geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
+      if (distance < within) Snap(v, touched);
+    }
+  }
+}
+
+double CrackCutter::SnapShare(std::span<const VertexId> corners) const {
+  const Lengths lengths = LengthsOf(corners);
+  const double own = lengths.mean_edge;
+  return own > 0 ? snap_fraction_ * std::max(own, lengths.scale) / own : snap_fraction_;
+}
+
+void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {
+  if (!on_crack_.insert(v).second) return;
+  ++statistics_.snapped_vertices;
+  const std::vector<TetId> units = UnitsAround({v});
+  touched->insert(touched->end(), units.begin(), units.end());
+}
+
+}  // namespace kerf::cut
