@@ -156,6 +156,12 @@ class CrackCutter {
     std::vector<FaceKey> crack;  // the crack faces its pieces hold
     // Crack faces inside it opened at a point in their middle (SplitUnits), by origins.
     std::vector<FaceKey> openings;
+    // The points its pieces were split at (temporary ones by their ids, which stay while the
+    // blade moves them), whether a cone's apex is one of them, and whether a crack face of them
+    // was opened (inside, or in a face of it: then the pieces are made again at each pose).
+    std::array<FacePoints, 4> points;
+    bool cone = false;
+    bool opened = false;
   };
   // The blade's points in a tet it meets now.
   struct BladeIn {
@@ -286,6 +292,12 @@ class CrackCutter {
   // split still has them); returns the origins whose parting may have changed.
   std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade,
                                         std::span<const FaceKey> to_open = {});
+  // Whether the open unit's pieces stand as they are with the blade in it at `points`: the
+  // same points as when they were made (only temporary ones moved), no crack face opened, and
+  // every piece still of positive rest volume. A cone's apex then moves with the blade.
+  bool PiecesStand(mesh::TetId unit, const std::array<FacePoints, 4>& points, const BladeIn& blade);
+  // The open unit's pieces and crack faces, by origins, as a split.
+  CrackSplit PiecesAsSplit(mesh::TetId unit) const;
   // A crack face of an open unit that parting left shut (its sides use the same vertices: every
   // corner lies on the crack's edge, the blade or the tip's path), and for one in a face of the
   // unit the open unit beside it that must open it alike (none if it is inside the unit).
@@ -371,6 +383,7 @@ class CrackCutter {
   absl::flat_hash_map<FaceKey, int, FaceKeyHash> crack_;  // by origins, with how many mark it
   absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;
+  absl::flat_hash_set<mesh::TetId> stood_;            // open units whose pieces stood this pose
   std::vector<mesh::TetId> blade_units_;              // the units the blade was in at the last pose
   absl::flat_hash_map<EdgeKey, double> blade_edges_;  // its temporary edge points then
   absl::flat_hash_set<EdgeKey> advancing_;            // those standing in for edges' points

@@ -22,6 +22,7 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
     const auto in = blade.find(u);
     return in == blade.end() ? nullptr : &in->second;
   };
+  stood_.clear();
   std::vector<VertexId> origins;
   for (const TetId u : units) {
     // A unit named at the last pose may have been renamed by parting since (its tets now are
@@ -102,9 +103,17 @@ bool CrackCutter::SamePieces(const std::vector<TetId>& pieces,
 std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
                                              std::span<const FaceKey> to_open) {
   const mesh::TetVertices corners = CornersOf(unit);
-  const TetCrack crack = MakeTetCrack(corners, PointsOf(corners, blade));
+  std::array<FacePoints, 4> points = PointsOf(corners, blade);
+  if (blade != nullptr && to_open.empty() && PiecesStand(unit, points, *blade)) {
+    stood_.insert(unit);
+    return {};
+  }
+  const TetCrack crack = MakeTetCrack(corners, points);
   const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
-  std::optional<CrackSplit> split = SplitWithoutApex(crack, rest);
+  // Pieces that stood this pose are opened as they are (made anew, the split could differ
+  // where it is chosen by shape, and lack the faces to open).
+  const bool stood = stood_.contains(unit);
+  std::optional<CrackSplit> split = stood ? PiecesAsSplit(unit) : SplitWithoutApex(crack, rest);
   const bool was_open = open_.contains(unit);
   if (split && split->kind == CrackSplitKind::kWhole && !was_open) {
     std::vector<VertexId> to_part;
@@ -114,6 +123,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     }
     return to_part;
   }
+  const bool cone = stood ? open_.at(unit).cone : !split;
   if (!split) {
     split = SplitAsCone(
         crack, TemporaryVertex(ApexPlace(unit), corners,
@@ -146,6 +156,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   if (was_open && open_.at(unit).crack == crack_faces &&
       SamePieces(open_.at(unit).pieces, split->tets)) {
     // Only the temporary points moved (TemporaryVertex moved them): the pieces stand.
+    open_.at(unit).points = points;
     return {};
   }
   // Parting can change only at vertices of the crack faces going or coming, and at those with
@@ -172,8 +183,49 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   const TetId source = was_open ? open_.at(unit).source : SourceTet(unit);
   std::vector<TetId> pieces = Replace(unit, split->tets);
   for (const TetId p : pieces) owner_[p] = unit;
-  open_[unit] = {corners, source, std::move(pieces), std::move(crack_faces), std::move(openings)};
+  const bool opened = !openings.empty() || !to_open.empty();
+  open_[unit] = {corners,
+                 source,
+                 std::move(pieces),
+                 std::move(crack_faces),
+                 std::move(openings),
+                 std::move(points),
+                 cone,
+                 opened};
   return to_part;
+}
+
+CrackSplit CrackCutter::PiecesAsSplit(TetId unit) const {
+  const OpenTet& open = open_.at(unit);
+  CrackSplit split;
+  split.kind = open.cone ? CrackSplitKind::kCone : CrackSplitKind::kMinimal;
+  for (const TetId p : open.pieces) {
+    mesh::TetVertices t = mesh_->tet(p);
+    for (VertexId& v : t) v = parting_.Origin(v);
+    split.tets.push_back(t);
+  }
+  split.crack_faces.assign(open.crack.begin(), open.crack.end());
+  return split;
+}
+
+bool CrackCutter::PiecesStand(TetId unit, const std::array<FacePoints, 4>& points,
+                              const BladeIn& blade) {
+  const auto it = open_.find(unit);
+  if (it == open_.end() || it->second.opened || it->second.points != points) {
+    return false;
+  }
+  // The apex first: the pieces' volumes are checked where it now is. (If they fail, the split
+  // made anew uses it again or leaves it to go with the unused temporary points.)
+  if (it->second.cone) TemporaryVertex(ApexPlace(unit), it->second.corners, blade.apex);
+  for (const TetId p : it->second.pieces) {
+    const mesh::TetVertices& c = mesh_->tet(p);
+    if (geometry::SignedVolume(mesh_->rest_position(c[0]), mesh_->rest_position(c[1]),
+                               mesh_->rest_position(c[2]), mesh_->rest_position(c[3])) <= 0) {
+      temporary_used_.erase(ApexPlace(unit));
+      return false;
+    }
+  }
+  return true;
 }
 
 namespace {

@@ -36,6 +36,8 @@ struct FacePoints {
   std::array<std::optional<mesh::VertexId>, 3> on_edge;
   std::optional<mesh::VertexId> inside;  // strictly inside the face
   std::array<bool, 3> corner_on_crack = {false, false, false};
+
+  friend bool operator==(const FacePoints&, const FacePoints&) = default;
 };
 
 // Whether the face needs a hub: three edge points and no inside point. The caller then puts one

@@ -430,14 +430,15 @@ TEST(KerfCli, LiveCutExperimentShowsExplicitBlowUpsAndImplicitStability) {
   EXPECT_LT(automatic_progressive.time_step(), automatic_progressive.critical_time_step());
   // Explicit in sub-steps of 1 ms: the deferred cut's 2 mm tets need 2-3 sub-steps and it
   // stays stable; the progressive cut's pieces on the blade (its crossings are not snapped, so
-  // the crack follows it) need hundreds (no assertion on whether it blows up).
+  // the crack follows it) need tens to hundreds, over ten times as many (no assertion on whether
+  // it blows up).
   const kerf::v1::LiveCutRow& substepped_deferred = experiment.rows(4);
   EXPECT_EQ(substepped_deferred.integration(), "SYMPLECTIC_EULER_SUBSTEPPED, 1 ms");
   EXPECT_FALSE(substepped_deferred.blew_up());
   EXPECT_EQ(substepped_deferred.cut_tets(), 96u);
   EXPECT_GE(substepped_deferred.sub_steps_max(), 2u);
   EXPECT_EQ(substepped_deferred.sub_steps_median(), 1u);
-  EXPECT_GT(experiment.rows(5).sub_steps_max(), 100u);
+  EXPECT_GT(experiment.rows(5).sub_steps_max(), 10 * substepped_deferred.sub_steps_max());
   for (const int i : {6, 7}) {  // implicit, 1 ms
     const kerf::v1::LiveCutRow& r = experiment.rows(i);
     EXPECT_EQ(r.integration(), "IMPLICIT_EULER, 1 ms");
