@@ -21,11 +21,12 @@
 // open tet); while the blade is in it the blade's crossings of its faces, and of the edges it
 // lies across (sweeping in their plane, or its tip on them), are points too and the crack
 // reaches the blade (a cone from the tip, or from the middle of the blade's chord), the same
-// points moving with the blade; a crack face there none of whose corners parting separates
-// (all on the crack's edge: the blade, the tip's path) opens at a point in its middle. An edge
-// point the blade leaves becomes a point for good where it was last. A group closes once the blade
-// meets none of its tets: their pieces are then tets of their own. Deferred: a group splits once
-// the blade meets none of its tets. Either way, withdrawing the blade makes its crossings of faces
+// points moving with the blade (its pieces stand while only those move and none turns over);
+// a crack face there none of whose corners parting separates (all on the crack's edge: the
+// blade, the tip's path) opens at a point in its middle. An edge point the blade leaves becomes
+// a point for good where it was last. A group closes once the blade meets none of its tets:
+// their pieces are then tets of their own. Deferred: a group splits once the blade meets none
+// of its tets. Either way, withdrawing the blade makes its crossings of faces
 // points where the crack ends, and after every split the vertices of the crack are parted where it
 // separates their tets.
 #pragma once
