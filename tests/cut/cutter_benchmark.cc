@@ -108,8 +108,13 @@ void BM_FinalSubdivision(benchmark::State& state) {
       return BladePose{0.01 * k, tip, tip + Eigen::Vector3d(0, 0, size + 0.01)};
     };
     int k = 0;
+    bool applied = true;
     for (; - 0.005 + 0.002 * k < size - 0.0015; ++k) {
-      (void)cutter->ApplyPose(blade_at(k, -0.005 + 0.002 * k));
+      applied = applied && cutter->ApplyPose(blade_at(k, -0.005 + 0.002 * k)).ok();
+    }
+    if (!applied) {
+      state.SkipWithError("a pose was refused");
+      break;
     }
     if (cutter->statistics().cut_tets != 0 || cutter->waiting_tets() == 0) {
       state.SkipWithError("every tet the blade cut should still be waiting");
@@ -117,8 +122,12 @@ void BM_FinalSubdivision(benchmark::State& state) {
     }
     const BladePose out = blade_at(k, size + 0.005);
     state.ResumeTiming();
-    (void)cutter->ApplyPose(out);
+    const absl::Status last = cutter->ApplyPose(out);
     state.PauseTiming();
+    if (!last.ok()) {
+      state.SkipWithError("the last pose was refused");
+      break;
+    }
     cut = cutter->statistics().cut_tets;
     if (cutter->waiting_tets() != 0) state.SkipWithError("some cut tets were not split");
     state.ResumeTiming();
@@ -148,15 +157,20 @@ void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
     return BladePose{0.01 * k, tip, tip + (depth + 0.01) * Eigen::Vector3d(0.0011 / 0.09, 0, 1)};
   };
   int k = 0;
-  for (double y = -0.005; y < 0.0047; y += 0.001) (void)cutter.ApplyPose(blade_at(k++, y));
+  bool applied = true;
+  for (double y = -0.005; y < 0.0047; y += 0.001) {
+    applied = applied && cutter.ApplyPose(blade_at(k++, y)).ok();
+  }
   std::size_t inside = 0;
   for (auto _ : state) {
-    (void)cutter.ApplyPose(blade_at(k, 0.0047 + 0.0001 * (k % 2)));
+    applied = applied && cutter.ApplyPose(blade_at(k, 0.0047 + 0.0001 * (k % 2))).ok();
     ++k;
     inside = 0;
     for (const std::size_t n : cutter.last_pose().tets_by_case) inside += n;
   }
-  if (static_cast<int>(inside) != wanted) {
+  if (!applied) {
+    state.SkipWithError("a pose was refused");
+  } else if (static_cast<int>(inside) != wanted) {
     state.SkipWithError(absl::StrCat("the blade is in ", inside, " tets, not ", wanted).c_str());
   }
   state.counters["k"] = static_cast<double>(inside);
