@@ -155,7 +155,9 @@ std::vector<VertexId> VertexParting::IdsOfParts(mesh::TetMesh* mesh, VertexId o,
       changes->made.push_back({o, had[p]});
     } else {
       assigned[p] = mesh->AddVertex(mesh->rest_position(had[p]), mesh->current_position(had[p]));
-      origin_[assigned[p]] = o;
+      const std::uint32_t i = mesh::Index(assigned[p]);
+      if (origin_.size() <= i) origin_.resize(i + 1, kNoOrigin);
+      origin_[i] = o;
       copies_[o].push_back(assigned[p]);
       changes->made.push_back({assigned[p], had[p]});
     }
@@ -179,7 +181,7 @@ bool VertexParting::RemoveIfUnused(mesh::TetMesh* mesh, VertexId origin) {
   }
   for (const VertexId v : ids) {
     if (mesh->IsAlive(v)) KERF_CHECK(mesh->RemoveVertex(v).ok());
-    origin_.erase(v);
+    if (mesh::Index(v) < origin_.size()) origin_[mesh::Index(v)] = kNoOrigin;
   }
   copies_.erase(origin);
   return true;

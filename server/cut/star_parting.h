@@ -44,8 +44,8 @@ class VertexParting {
  public:
   // The vertex a copy was made from (v itself for a vertex that is no copy).
   mesh::VertexId Origin(mesh::VertexId v) const {
-    const auto it = origin_.find(v);
-    return it == origin_.end() ? v : it->second;
+    const std::uint32_t i = mesh::Index(v);
+    return i < origin_.size() && origin_[i] != kNoOrigin ? origin_[i] : v;
   }
   bool HasCopies(mesh::VertexId origin) const {
     const auto it = copies_.find(origin);
@@ -85,7 +85,10 @@ class VertexParting {
                                          const std::function<bool(mesh::TetId)>& is_fresh,
                                          PartingChanges* changes);
 
-  absl::flat_hash_map<mesh::VertexId, mesh::VertexId> origin_;               // copy -> origin
+  static constexpr mesh::VertexId kNoOrigin{0xffffffffu};
+  // By vertex index: a copy's origin, kNoOrigin for a vertex that is no copy (a dense array:
+  // Origin is asked for every corner of every tet near the blade at every pose).
+  std::vector<mesh::VertexId> origin_;
   absl::flat_hash_map<mesh::VertexId, std::vector<mesh::VertexId>> copies_;  // origin -> copies
 };
 
