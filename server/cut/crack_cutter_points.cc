@@ -1,0 +1,191 @@
+// CrackCutter: the crack's points in a unit, and the vertices made for them and placed on their
+// side of the crack (see crack_cutter.h).
+#include <algorithm>
+
+#include "base/check.h"
+#include "cut/crack_cutter.h"
+
+namespace kerf::cut {
+namespace {
+
+using mesh::Index;
+using mesh::VertexId;
+
+}  // namespace
+
+std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners,
+                                                const BladeIn* blade) {
+  // The blade's point on an edge, if it makes one there.
+  const auto blade_fraction = [&](EdgeKey edge) -> std::optional<double> {
+    if (blade == nullptr) return std::nullopt;
+    const auto at = blade->edges.find(edge);
+    return at == blade->edges.end() ? std::nullopt : std::optional<double>(at->second);
+  };
+  std::array<FacePoints, 4> points;
+  for (int k = 0; k < 4; ++k) {
+    FacePoints& p = points[k];
+    for (int j = 0; j < 3; ++j) p.corners[j] = corners[mesh::kTetFaces[k][j]];
+    bool temporary = false;  // a point on its edges is
+    for (int j = 0; j < 3; ++j) {
+      const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
+      const EdgeKey edge = MakeEdgeKey(a, b);
+      // The blade's point first: where the crack's front advances along an edge with a point,
+      // it stands in for that point.
+      if (const std::optional<double> at = blade_fraction(edge)) {
+        const auto [low, high] = EdgeEnds(edge);
+        p.on_edge[j] =
+            TemporaryVertex(EdgePlace(edge), {low, high, low, low}, {1 - *at, *at, 0, 0});
+        temporary = true;
+      } else if (edge_points_.contains(edge)) {
+        p.on_edge[j] = EdgePointVertex(a, b);
+      }
+      p.corner_on_crack[j] = on_crack_.contains(p.corners[j]);
+    }
+    const FaceKey key = MakeFaceKey(p.corners[0], p.corners[1], p.corners[2]);
+    if (face_points_.contains(key)) {
+      p.inside = FacePointVertex(key);
+    } else if (const auto at =
+                   blade ? blade->faces.find(key) : decltype(blade->faces)::const_iterator{};
+               blade != nullptr && at != blade->faces.end()) {
+      const Eigen::Vector3d& b = at->second;
+      p.inside =
+          TemporaryVertex(FacePlace(key), {key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0});
+    } else if (NeedsHub(p)) {
+      // The hub: the middle of the three edge points, on the face's vertices in key order;
+      // temporary if one of them is.
+      Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+      for (int j = 0; j < 3; ++j) {
+        const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
+        const EdgeKey edge = MakeEdgeKey(a, b);
+        // The blade's point, else the edge's (value_or would look the edge's up either way).
+        const std::optional<double> moving = blade_fraction(edge);
+        const double fraction = moving ? *moving : edge_points_.at(edge).fraction;
+        const auto [low, high] = EdgeEnds(edge);
+        for (int i = 0; i < 3; ++i) {
+          if (key[i] == low) weights[i] += (1 - fraction) / 3;
+          if (key[i] == high) weights[i] += fraction / 3;
+        }
+      }
+      if (temporary) {
+        p.inside = TemporaryVertex(FacePlace(key), {key[0], key[1], key[2], key[0]},
+                                   {weights[0], weights[1], weights[2], 0});
+      } else {
+        face_points_[key] = {weights};
+        p.inside = FacePointVertex(key);
+      }
+    }
+  }
+  return points;
+}
+
+VertexId CrackCutter::EdgePointVertex(VertexId a, VertexId b) {
+  EdgePoint& e = edge_points_.at(MakeEdgeKey(a, b));
+  if (e.vertex == kNoVertex) {
+    const VertexId low = Index(a) < Index(b) ? a : b, high = low == a ? b : a;
+    e.vertex = MakeVertex({low, high, low, low}, {1 - e.fraction, e.fraction, 0, 0});
+  }
+  return e.vertex;
+}
+
+VertexId CrackCutter::FacePointVertex(const FaceKey& key) {
+  FacePoint& f = face_points_.at(key);
+  if (f.vertex == kNoVertex) {
+    const Eigen::Vector3d& b = f.barycentric;
+    f.vertex = MakeVertex({key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0});
+  }
+  return f.vertex;
+}
+
+VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<VertexId, 4>& origins,
+                                      const Eigen::Vector4d& weights) {
+  temporary_used_.insert(place);
+  const auto it = temporary_.find(place);
+  if (it == temporary_.end() || !mesh_->IsAlive(it->second)) {
+    return temporary_[place] = MakeVertex(origins, weights);
+  }
+  recipe_[it->second] = {origins, weights, ScaleOf(origins, weights)};
+  if (parting_.HasCopies(it->second)) {
+    // Parted (a point opening a crack face): its copies lie on the two sides of an opening, so
+    // each keeps its own displacement, and the opening stays as open as the tissue made it.
+    Eigen::Vector3d rest = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) rest += weights[k] * mesh_->rest_position(origins[k]);
+    for (const VertexId v : parting_.Ids(it->second)) {
+      if (!mesh_->IsAlive(v)) continue;
+      const Eigen::Vector3d displacement = mesh_->current_position(v) - mesh_->rest_position(v);
+      KERF_CHECK(mesh_->MoveVertex(v, rest, rest + displacement).ok());
+    }
+  } else {
+    for (const VertexId v : parting_.Ids(it->second)) {
+      if (mesh_->IsAlive(v)) PlaceOnItsSide(v, origins, weights);
+    }
+  }
+  ++statistics_.moved;
+  return it->second;
+}
+
+std::optional<std::array<VertexId, 4>> CrackCutter::PlacedAround(
+    VertexId v, const std::array<VertexId, 4>& origins, const Eigen::Vector4d& weights) const {
+  std::array<bool, 4> found{};
+  const std::array<VertexId, 4> named = NamedIn(mesh_->TetsAround(v), origins, &found);
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] != 0 && !found[k]) return std::nullopt;
+  }
+  return named;
+}
+
+void CrackCutter::PlaceOnItsSide(VertexId v, const std::array<VertexId, 4>& origins,
+                                 const Eigen::Vector4d& weights) {
+  const std::optional<std::array<VertexId, 4>> from = PlacedAround(v, origins, weights);
+  Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    rest += weights[k] * mesh_->rest_position(origins[k]);
+    if (from) current += weights[k] * mesh_->current_position((*from)[k]);
+  }
+  if (!from) current = rest + mesh_->current_position(v) - mesh_->rest_position(v);
+  KERF_CHECK(mesh_->MoveVertex(v, rest, current).ok());
+  if (from) made_vertices_.push_back({v, *from, weights});
+}
+
+VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& origins,
+                                 const Eigen::Vector4d& weights) {
+  // Placed on the origins for now: once parting is done, Repart places it on its own side.
+  Eigen::Vector3d rest = Eigen::Vector3d::Zero(), current = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] == 0) continue;
+    rest += weights[k] * mesh_->rest_position(origins[k]);
+    current += weights[k] * mesh_->current_position(origins[k]);
+  }
+  const VertexId v = mesh_->AddVertex(rest, current);
+  made_vertices_.push_back({v, origins, weights});
+  recipe_[v] = {origins, weights, ScaleOf(origins, weights)};
+  new_points_.push_back(v);
+  return v;
+}
+
+double CrackCutter::ScaleOf(const std::array<VertexId, 4>& origins,
+                            const Eigen::Vector4d& weights) const {
+  std::vector<VertexId> used;
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] != 0 && std::find(used.begin(), used.end(), origins[k]) == used.end()) {
+      used.push_back(origins[k]);
+    }
+  }
+  const Lengths lengths = LengthsOf(used);
+  return std::max(lengths.scale, lengths.mean_edge);
+}
+
+CrackCutter::Lengths CrackCutter::LengthsOf(std::span<const VertexId> vertices) const {
+  Lengths lengths;
+  double sum = 0;
+  int edges = 0;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    lengths.scale = std::max(lengths.scale, TissueScale(vertices[i]));
+    for (std::size_t j = i + 1; j < vertices.size(); ++j, ++edges) {
+      sum += (mesh_->rest_position(vertices[i]) - mesh_->rest_position(vertices[j])).norm();
+    }
+  }
+  if (edges > 0) lengths.mean_edge = sum / edges;
+  return lengths;
+}
+
+}  // namespace kerf::cut
