@@ -65,7 +65,7 @@ void AddWholeFaceCracks(const TetCrack& crack, CrackSplit* split) {
 // Whether the pieces' faces on each face of the tet are exactly that face's triangles.
 bool TilesFacesAsTheRule(const TetCrack& crack, const std::vector<TetVertices>& tets) {
   for (int k = 0; k < 4; ++k) {
-    const std::vector<VertexId> on_face = FaceVertices(crack, k);
+    const std::vector<VertexId>& on_face = FaceVertices(crack, k);
     std::vector<Triangle> made, rule;
     for (const TetVertices& t : tets) {
       for (const auto& f : mesh::kTetFaces) {
@@ -96,7 +96,7 @@ std::vector<Triangle> InnerFacesOf(const TetCrack& crack, const std::vector<TetV
           std::all_of(face.begin(), face.end(), [&](VertexId v) { return Contains(points, v); });
       bool on_tet_face = false;
       for (int k = 0; k < 4; ++k) {
-        const std::vector<VertexId> on_face = FaceVertices(crack, k);
+        const std::vector<VertexId>& on_face = FaceVertices(crack, k);
         on_tet_face = on_tet_face || std::all_of(face.begin(), face.end(),
                                                  [&](VertexId v) { return Contains(on_face, v); });
       }
@@ -187,7 +187,7 @@ bool HasInnerCrack(const TetCrack& crack) {
   const std::vector<VertexId> points = TracePoints(crack);
   if (points.empty()) return false;
   for (int k = 0; k < 4; ++k) {
-    const std::vector<VertexId> on_face = FaceVertices(crack, k);
+    const std::vector<VertexId>& on_face = FaceVertices(crack, k);
     if (std::all_of(points.begin(), points.end(),
                     [&](VertexId v) { return Contains(on_face, v); })) {
       return false;
