@@ -122,32 +122,32 @@ absl::Status TetGrid::RefreshTopology() {
     ++last_refresh_count_;
   }
   synced_ = mesh_->change_log().Mark();
-  std::vector<VertexId> moved;
+  // Temporary points of a cut move with the blade (TetMesh::MoveVertex) between physics steps.
+  std::vector<TetId> stale;
   for (const VertexId v : changes->moved_vertices) {
-    if (mesh_->IsAlive(v)) moved.push_back(v);
+    if (mesh_->IsAlive(v)) FarFromReference(v, &stale);
   }
-  RegisterAgainAround(moved);
+  RegisterAgain(std::move(stale));
   return absl::OkStatus();
 }
 
 absl::Status TetGrid::Refresh() {
   if (absl::Status s = RefreshTopology(); !s.ok()) return s;
-  std::vector<VertexId> all;
-  for (const VertexId v : mesh_->vertices()) all.push_back(v);
-  RegisterAgainAround(all);
+  std::vector<TetId> stale;
+  for (const VertexId v : mesh_->vertices()) FarFromReference(v, &stale);
+  RegisterAgain(std::move(stale));
   return absl::OkStatus();
 }
 
-void TetGrid::RegisterAgainAround(std::span<const VertexId> vertices) {
-  // A vertex that moved farther than the margin from its reference gets a new reference, and
-  // every tet around it is registered again.
-  const auto current = mesh_->current_positions();
-  std::vector<TetId> stale;
-  for (const VertexId v : vertices) {
-    if ((current[Index(v)] - registered_at_[Index(v)]).norm() <= margin_) continue;
-    registered_at_[Index(v)] = current[Index(v)];
-    for (const TetId t : mesh_->TetsAround(v)) stale.push_back(t);
-  }
+void TetGrid::FarFromReference(VertexId v, std::vector<TetId>* stale) {
+  const Eigen::Vector3d& now = mesh_->current_position(v);
+  if ((now - registered_at_[Index(v)]).norm() <= margin_) return;
+  registered_at_[Index(v)] = now;
+  const std::span<const TetId> around = mesh_->TetsAround(v);
+  stale->insert(stale->end(), around.begin(), around.end());
+}
+
+void TetGrid::RegisterAgain(std::vector<TetId> stale) {
   std::sort(stale.begin(), stale.end());
   stale.erase(std::unique(stale.begin(), stale.end()), stale.end());
   for (const TetId t : stale) {

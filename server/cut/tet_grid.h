@@ -17,7 +17,6 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include "absl/container/inlined_vector.h"
@@ -69,9 +68,11 @@ class TetGrid {
   }
   void Register(mesh::TetId t);
   void Unregister(mesh::TetId t);
-  // Registers again the tets around those of `vertices` farther than the margin from their
-  // reference, which they take as their new one.
-  void RegisterAgainAround(std::span<const mesh::VertexId> vertices);
+  // If `v` is farther than the margin from its reference, makes where it is its reference and
+  // adds the tets around it to `stale`.
+  void FarFromReference(mesh::VertexId v, std::vector<mesh::TetId>* stale);
+  // Registers the tets again (once each).
+  void RegisterAgain(std::vector<mesh::TetId> stale);
 
   const mesh::TetMesh* mesh_;
   double cell_size_ = 0;
