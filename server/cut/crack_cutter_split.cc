@@ -123,7 +123,6 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     }
     return to_part;
   }
-  const bool cone = stood ? open_.at(unit).cone : !split;
   if (!split) {
     split = SplitAsCone(
         crack, TemporaryVertex(ApexPlace(unit), corners,
@@ -183,6 +182,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   const TetId source = was_open ? open_.at(unit).source : SourceTet(unit);
   std::vector<TetId> pieces = Replace(unit, split->tets);
   for (const TetId p : pieces) owner_[p] = unit;
+  const bool cone = split->kind == CrackSplitKind::kCone;
   const bool opened = !openings.empty() || !to_open.empty();
   open_[unit] = {corners,
                  source,
@@ -217,15 +217,13 @@ bool CrackCutter::PiecesStand(TetId unit, const std::array<FacePoints, 4>& point
   // The apex first: the pieces' volumes are checked where it now is. (If they fail, the split
   // made anew uses it again or leaves it to go with the unused temporary points.)
   if (it->second.cone) TemporaryVertex(ApexPlace(unit), it->second.corners, blade.apex);
-  for (const TetId p : it->second.pieces) {
-    const mesh::TetVertices& c = mesh_->tet(p);
-    if (geometry::SignedVolume(mesh_->rest_position(c[0]), mesh_->rest_position(c[1]),
-                               mesh_->rest_position(c[2]), mesh_->rest_position(c[3])) <= 0) {
-      temporary_used_.erase(ApexPlace(unit));
-      return false;
-    }
+  const std::vector<TetId>& pieces = it->second.pieces;
+  if (std::all_of(pieces.begin(), pieces.end(),
+                  [&](TetId p) { return mesh::RestVolume(*mesh_, p) > 0; })) {
+    return true;
   }
-  return true;
+  temporary_used_.erase(ApexPlace(unit));
+  return false;
 }
 
 namespace {
