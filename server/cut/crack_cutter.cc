@@ -176,6 +176,7 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
   last_pose_ = {};
   if (previous_) {
     const BladePose& from = *previous_;
+    step_ = {from, pose};
     const std::vector<TetId> near =
         UnitsNear(from.tip.cwiseMin(from.heel).cwiseMin(pose.tip).cwiseMin(pose.heel),
                   from.tip.cwiseMax(from.heel).cwiseMax(pose.tip).cwiseMax(pose.heel));
@@ -206,6 +207,7 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
       SplitUnits(std::move(touched), blade);
       CloseUnitsTheBladeLeft();
     }
+    step_.reset();
   }
   previous_ = pose;
   std::vector<VertexId> near_blade;

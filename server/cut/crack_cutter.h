@@ -76,6 +76,9 @@ inline constexpr double kDefaultCrackSnapFraction = 0.2;
 // fraction of kMinSnapFraction or less).
 inline constexpr double kSliverSnapScale = 1.75;
 inline constexpr double kSliverAngleDeg = 5;
+// A vertex snaps onto the crack only within this share of the mean edge of the tissue's tets
+// around it.
+inline constexpr double kSnapReach = 0.24;
 // The blade's crossing of a face is a temporary point unless it is within this (barycentric) of
 // the face's edges; temporary points are not snapped, so the crack follows the blade closely
 // (their thin pieces last only while the blade is in their tet).
@@ -231,6 +234,9 @@ class CrackCutter {
   void SnapVerticesNear(const BladePose& from, const BladePose& to,
                         const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
+  double DistanceToStep(mesh::VertexId v) const;
+  double Reach(const std::vector<mesh::TetId>& units) const;
+  bool WithinReach(mesh::VertexId v) const;
   // Whether bisecting one of `units` (those at the edge) at the point `fraction` from `low` to
   // `high` leaves a half under kSliverAngleDeg (rest positions).
   bool BisectionLeavesSliver(mesh::VertexId low, mesh::VertexId high, double fraction,
@@ -377,6 +383,8 @@ class CrackCutter {
   double snap_fraction_;
   double min_temporary_height_;
   std::optional<BladePose> previous_;
+  // The step being cut (from the previous pose to this one), while ApplyPose runs.
+  std::optional<std::pair<BladePose, BladePose>> step_;
   VertexParting parting_;
   absl::flat_hash_map<EdgeKey, EdgePoint> edge_points_;               // by origins
   absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;  // by origins

@@ -71,8 +71,9 @@ void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& 
       KERF_CHECK(point.vertex == kNoVertex);
       const double share = SnapShare(std::array<VertexId, 2>{low, high});
       around = UnitsAround({low, high});
-      if (std::min(fraction, 1 - fraction) < share) {
-        Snap(fraction <= 0.5 ? low : high, &around);
+      const VertexId nearer = fraction <= 0.5 ? low : high;
+      if (std::min(fraction, 1 - fraction) < share && WithinReach(nearer)) {
+        Snap(nearer, &around);
       } else {
         point = {fraction};
       }

@@ -1,6 +1,7 @@
 // CrackCutter: the blade's crossings recorded as the crack's points, and snapping (see
 // crack_cutter.h).
 #include <algorithm>
+#include <limits>
 
 #include "cut/crack_cutter.h"
 #include "geometry/point_triangle_distance.h"
@@ -26,7 +27,7 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     b.maxCoeff(&largest);
     b.minCoeff(&smallest);
     const double share = SnapShare(c.face);
-    if (b[largest] > 1 - share) {
+    if (b[largest] > 1 - share && WithinReach(c.face[largest])) {
       Snap(c.face[largest], touched);
     } else if (b[smallest] < share) {
       // Beside the edge opposite the smallest weight: that edge's crossing.
@@ -52,13 +53,23 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
   const double sliver_share = snap_fraction_ > kMinSnapFraction ? kSliverSnapScale * share : 0;
   const double from_corner = std::min(fraction, 1 - fraction);
   const std::vector<TetId> units = UnitsAround({low, high});
+  const VertexId nearer = fraction <= 0.5 ? low : high;
   if (from_corner < share ||
       (from_corner < sliver_share && BisectionLeavesSliver(low, high, fraction, units))) {
-    Snap(fraction <= 0.5 ? low : high, touched);
-  } else {
-    edge_points_[key] = {fraction};
-    touched->insert(touched->end(), units.begin(), units.end());
+    if (WithinReach(nearer)) {
+      Snap(nearer, touched);
+      return;
+    }
+    // Too far from the blade's path to snap onto the crack: the point moves away from the
+    // corner instead, as far as the path allows.
+    const double length = (mesh_->rest_position(low) - mesh_->rest_position(high)).norm();
+    const double at = (low == nearer ? fraction : 1 - fraction);
+    const double target = std::max(share, sliver_share);
+    const double moved = std::max(at, std::min({target, at + Reach(units) / length, 0.5}));
+    fraction = nearer == low ? moved : 1 - moved;
   }
+  edge_points_[key] = {fraction};
+  touched->insert(touched->end(), units.begin(), units.end());
 }
 
 bool CrackCutter::BisectionLeavesSliver(VertexId low, VertexId high, double fraction,
@@ -99,9 +110,30 @@ void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
       const double distance =
           std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),
                    geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
-      if (distance < within) Snap(v, touched);
+      if (distance < within && WithinReach(v)) Snap(v, touched);
     }
   }
+}
+
+double CrackCutter::DistanceToStep(VertexId v) const {
+  if (!step_) return 0;
+  const auto& [from, to] = *step_;
+  const Eigen::Vector3d& x = mesh_->current_position(v);
+  return std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),
+                  geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
+}
+
+bool CrackCutter::WithinReach(VertexId v) const {
+  return DistanceToStep(v) <= Reach(UnitsAround({v}));
+}
+
+double CrackCutter::Reach(const std::vector<TetId>& units) const {
+  double edge = std::numeric_limits<double>::infinity();
+  for (const TetId u : units) {
+    const Lengths lengths = LengthsOf(CornersOf(u));
+    edge = std::min(edge, std::max(lengths.mean_edge, lengths.scale));
+  }
+  return kSnapReach * edge;
 }
 
 double CrackCutter::SnapShare(std::span<const VertexId> corners) const {
