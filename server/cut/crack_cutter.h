@@ -10,11 +10,12 @@
 // length there from a corner (of a face's, barycentric, from a corner, or from an edge, where it
 // becomes that edge's point; an edge's within kSliverSnapScale times that where it would make a
 // sliver), and a vertex that near the swept surface, is taken at the corner, which is then on the
-// crack. The tissue's edge length is the edge's own for the tissue's edges
-// and that of the tet it was cut from for a piece's edge (SnapShare), so a cut through pieces
-// makes none finer than a cut through tets. Points are kept as weights until a split uses them.
-// Edges and faces are named by their vertices' origins (cut/star_parting.h), so the two lips of a
-// crack share their points.
+// crack, if the corner lies within kSnapReach of its tets' mean edge of the step's swept surface;
+// farther, an edge's point moves away from the corner instead. The tissue's edge length is the
+// edge's own for the tissue's edges and that of the tet it was cut from for a piece's edge
+// (SnapShare), so a cut through pieces makes none finer than a cut through tets. Points are kept as
+// weights until a split uses them. Edges and faces are named by their vertices' origins
+// (cut/star_parting.h), so the two lips of a crack share their points.
 //
 // The tets that share points form groups. Progressive (the default): after every pose, each tet
 // with new points, and each the blade is or was in, is split at once from its own corners (an
@@ -76,8 +77,10 @@ inline constexpr double kDefaultCrackSnapFraction = 0.2;
 // fraction of kMinSnapFraction or less).
 inline constexpr double kSliverSnapScale = 1.75;
 inline constexpr double kSliverAngleDeg = 5;
-// A vertex snaps onto the crack only within this share of the mean edge of the tissue's tets
-// around it.
+// A vertex snaps onto the crack only within this share of the smallest mean edge of the tets
+// around it from the step's swept surface (just under the fidelity meter's tolerance, 0.25 of the
+// tet's: lab/crack_fidelity.h), so no crack face bends farther than that from the blade's path
+// to reach it.
 inline constexpr double kSnapReach = 0.24;
 // The blade's crossing of a face is a temporary point unless it is within this (barycentric) of
 // the face's edges; temporary points are not snapped, so the crack follows the blade closely
@@ -234,8 +237,12 @@ class CrackCutter {
   void SnapVerticesNear(const BladePose& from, const BladePose& to,
                         const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
+  // The distance from the vertex (current position) to the step's swept surface (0 outside a
+  // step).
   double DistanceToStep(mesh::VertexId v) const;
+  // kSnapReach of the smallest mean edge of `units` (the tissue's, for pieces).
   double Reach(const std::vector<mesh::TetId>& units) const;
+  // Whether `v` lies within Reach of its units of the step's swept surface: it may snap.
   bool WithinReach(mesh::VertexId v) const;
   // Whether bisecting one of `units` (those at the edge) at the point `fraction` from `low` to
   // `high` leaves a half under kSliverAngleDeg (rest positions).

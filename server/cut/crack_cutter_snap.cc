@@ -61,11 +61,11 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
       return;
     }
     // Too far from the blade's path to snap onto the crack: the point moves away from the
-    // corner instead, as far as the path allows.
+    // corner instead, out of the snap share (and the sliver share) as far as it may go without
+    // leaving the reach of the blade's crossing.
     const double length = (mesh_->rest_position(low) - mesh_->rest_position(high)).norm();
-    const double at = (low == nearer ? fraction : 1 - fraction);
-    const double target = std::max(share, sliver_share);
-    const double moved = std::max(at, std::min({target, at + Reach(units) / length, 0.5}));
+    const double moved =
+        std::min({std::max(share, sliver_share), from_corner + Reach(units) / length, 0.5});
     fraction = nearer == low ? moved : 1 - moved;
   }
   edge_points_[key] = {fraction};
