@@ -229,6 +229,7 @@ void CrackCutter::Finish() {
   if (previous_) {
     // The crack reaches where the blade was: its crossings of faces are where the crack ends.
     const BladePose& at = *previous_;
+    step_ = {at, at};  // what snaps now snaps within reach of the blade where it was
     Crossings crossed;
     crossed.faces = crossings_.FacesCrossedBy(
         at, PlacedCornersOfAll(UnitsNear(at.tip.cwiseMin(at.heel), at.tip.cwiseMax(at.heel))),
@@ -244,6 +245,7 @@ void CrackCutter::Finish() {
     blade_units_.clear();
     SplitUnits(std::move(touched), {});
   }
+  step_.reset();
   SplitReadyGroups(nullptr);  // progressive: every group closes
   OpenShutCrackFaces();
   previous_.reset();

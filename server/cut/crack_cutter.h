@@ -390,7 +390,8 @@ class CrackCutter {
   double snap_fraction_;
   double min_temporary_height_;
   std::optional<BladePose> previous_;
-  // The step being cut (from the previous pose to this one), while ApplyPose runs.
+  // The step being cut (from the previous pose to this one) while ApplyPose runs; the last pose
+  // twice while Finish records where the blade was.
   std::optional<std::pair<BladePose, BladePose>> step_;
   VertexParting parting_;
   absl::flat_hash_map<EdgeKey, EdgePoint> edge_points_;               // by origins
