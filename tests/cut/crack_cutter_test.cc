@@ -552,8 +552,9 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
 // The liver of the paper's lineage and its finer remesh, made by other tools: every family,
 // three seeds each. Valid after every pose; coverage, slivers and overcut as measured
 // (docs/cutting-fidelity.md): no new tet under 1 degree, under 5 degrees at most 0.5% of the new
-// tets over a liver's paths (measured 0.22% and 0.09%), and at most 2% of the crack's faces
-// overcut (measured 0 and 1.1%; snapping vertices as far as the snap fraction took 3.8% and 5.3%).
+// tets over a liver's paths (measured 0.22% and 0.09%), and at most 1% of the crack's faces
+// overcut (measured 0 and 0.5-0.6%; snapping vertices as far as the snap fraction took 3.8% and
+// 5.3%).
 TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
   for (const char* name : {"liver.msh", "liver2.msh"}) {
     const std::string path = kerf::testing::SharedMeshPath(name);
@@ -586,7 +587,7 @@ TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
         "%zu of %zu crack faces overcut, over %d paths\n",
         name, coverage / runs, below / runs, slivers, new_tets, overcut_faces, crack_faces, runs);
     EXPECT_LE(200 * slivers, new_tets) << name;
-    EXPECT_LE(50 * overcut_faces, crack_faces) << name;
+    EXPECT_LE(100 * overcut_faces, crack_faces) << name;
     EXPECT_GE(coverage / runs, 0.95) << name;
     EXPECT_GE(below / runs, 0.99) << name;
   }
