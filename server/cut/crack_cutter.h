@@ -242,8 +242,9 @@ class CrackCutter {
   double DistanceToStep(mesh::VertexId v) const;
   // kSnapReach of the smallest mean edge of `units` (the tissue's, for pieces).
   double Reach(const std::vector<mesh::TetId>& units) const;
-  // Whether `v` lies within Reach of its units of the step's swept surface: it may snap.
-  bool WithinReach(mesh::VertexId v) const;
+  // Whether `v` may snap onto the crack: it lies within Reach of its units of the step's swept
+  // surface, and no unit around it has its other three corners on the crack (a chip).
+  bool MaySnap(mesh::VertexId v) const;
   // Whether bisecting one of `units` (those at the edge) at the point `fraction` from `low` to
   // `high` leaves a half under kSliverAngleDeg (rest positions).
   bool BisectionLeavesSliver(mesh::VertexId low, mesh::VertexId high, double fraction,

@@ -27,7 +27,7 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     b.maxCoeff(&largest);
     b.minCoeff(&smallest);
     const double share = SnapShare(c.face);
-    if (b[largest] > 1 - share && WithinReach(c.face[largest])) {
+    if (b[largest] > 1 - share && MaySnap(c.face[largest])) {
       Snap(c.face[largest], touched);
     } else if (b[smallest] < share) {
       // Beside the edge opposite the smallest weight: that edge's crossing.
@@ -56,7 +56,7 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
   const VertexId nearer = fraction <= 0.5 ? low : high;
   if (from_corner < share ||
       (from_corner < sliver_share && BisectionLeavesSliver(low, high, fraction, units))) {
-    if (WithinReach(nearer)) {
+    if (MaySnap(nearer)) {
       Snap(nearer, touched);
       return;
     }
@@ -110,7 +110,7 @@ void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
       const double distance =
           std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),
                    geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
-      if (distance < within && WithinReach(v)) Snap(v, touched);
+      if (distance < within && MaySnap(v)) Snap(v, touched);
     }
   }
 }
@@ -123,8 +123,16 @@ double CrackCutter::DistanceToStep(VertexId v) const {
                   geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
 }
 
-bool CrackCutter::WithinReach(VertexId v) const {
-  return DistanceToStep(v) <= Reach(UnitsAround({v}));
+bool CrackCutter::MaySnap(VertexId v) const {
+  const std::vector<TetId> units = UnitsAround({v});
+  if (DistanceToStep(v) > Reach(units)) return false;
+  // Nor may it be the last corner of a tet to come onto the crack: every face of the tet would
+  // lie on the crack, and the tet be cut free whole.
+  return std::none_of(units.begin(), units.end(), [&](TetId u) {
+    const mesh::TetVertices corners = CornersOf(u);
+    return std::all_of(corners.begin(), corners.end(),
+                       [&](VertexId c) { return c == v || on_crack_.contains(c); });
+  });
 }
 
 double CrackCutter::Reach(const std::vector<TetId>& units) const {
