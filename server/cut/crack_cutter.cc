@@ -190,7 +190,7 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
         }));
     std::vector<TetId> touched;
     RecordCrossings(found, &touched);
-    SnapVerticesNear(from, pose, near, &touched);
+    SnapVerticesNear(near, &touched);
     Join(touched);
     if (mode_ == CutMode::kDeferred) {
       SplitReadyGroups(&pose);

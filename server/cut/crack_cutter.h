@@ -232,14 +232,12 @@ class CrackCutter {
   void RecordEdgeCrossing(mesh::VertexId low, mesh::VertexId high, double fraction,
                           std::vector<mesh::TetId>* touched);
   // Snaps the corners of `units` within the snap fraction of their unit's mean edge of the
-  // surface swept from `from` to `to` (the blade through a vertex, along an edge or in a face's
-  // plane crosses no edge inside).
-  void SnapVerticesNear(const BladePose& from, const BladePose& to,
-                        const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
+  // step's swept surface (the blade through a vertex, along an edge or in a face's plane crosses
+  // no edge inside).
+  void SnapVerticesNear(const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
-  // The distance from the vertex (current position) to the step's swept surface (0 outside a
-  // step).
-  double DistanceToStep(mesh::VertexId v) const;
+  // The distance from `x` (current positions) to the step's swept surface (0 outside a step).
+  double DistanceToStep(const Eigen::Vector3d& x) const;
   // kSnapReach of the smallest mean edge of `units` (the tissue's, for pieces).
   double Reach(const std::vector<mesh::TetId>& units) const;
   // Whether `v` may snap onto the crack: it lies within Reach of its units of the step's swept

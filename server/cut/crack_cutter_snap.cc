@@ -93,8 +93,7 @@ bool CrackCutter::BisectionLeavesSliver(VertexId low, VertexId high, double frac
   return false;
 }
 
-void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
-                                   const std::vector<TetId>& units, std::vector<TetId>* touched) {
+void CrackCutter::SnapVerticesNear(const std::vector<TetId>& units, std::vector<TetId>* touched) {
   absl::flat_hash_set<VertexId> seen;
   for (const TetId u : units) {
     const mesh::TetVertices corners = CornersOf(u), placed = PlacedCorners(u);
@@ -106,26 +105,23 @@ void CrackCutter::SnapVerticesNear(const BladePose& from, const BladePose& to,
     for (int k = 0; k < 4; ++k) {
       const VertexId v = corners[k];
       if (on_crack_.contains(v) || IsInnerPoint(v) || !seen.insert(v).second) continue;
-      const Eigen::Vector3d& x = mesh_->current_position(placed[k]);
-      const double distance =
-          std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),
-                   geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
-      if (distance < within && MaySnap(v)) Snap(v, touched);
+      if (DistanceToStep(mesh_->current_position(placed[k])) < within && MaySnap(v)) {
+        Snap(v, touched);
+      }
     }
   }
 }
 
-double CrackCutter::DistanceToStep(VertexId v) const {
+double CrackCutter::DistanceToStep(const Eigen::Vector3d& x) const {
   if (!step_) return 0;
   const auto& [from, to] = *step_;
-  const Eigen::Vector3d& x = mesh_->current_position(v);
   return std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),
                   geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
 }
 
 bool CrackCutter::MaySnap(VertexId v) const {
   const std::vector<TetId> units = UnitsAround({v});
-  if (DistanceToStep(v) > Reach(units)) return false;
+  if (DistanceToStep(mesh_->current_position(v)) > Reach(units)) return false;
   // Nor may it be the last corner of a tet to come onto the crack: every face of the tet would
   // lie on the crack, and the tet be cut free whole.
   return std::none_of(units.begin(), units.end(), [&](TetId u) {
