@@ -229,8 +229,11 @@ class CrackCutter {
 
   // Records crossings as points (snapping them); adds the units they touch.
   void RecordCrossings(const Crossings& found, std::vector<mesh::TetId>* touched);
+  // Where an edge's crossing comes from: the blade's edge swept across the edge in a step, or the
+  // blade, having lain across the edge (a temporary point the pieces around stood on), left it.
+  enum class EdgeCrossingFrom { kSweep, kBladeLeaving };
   void RecordEdgeCrossing(mesh::VertexId low, mesh::VertexId high, double fraction,
-                          std::vector<mesh::TetId>* touched);
+                          EdgeCrossingFrom from, std::vector<mesh::TetId>* touched);
   // Snaps the corners of `units` within the snap fraction of their unit's mean edge of the
   // step's swept surface (the blade through a vertex, along an edge or in a face's plane crosses
   // no edge inside).

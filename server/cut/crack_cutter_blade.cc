@@ -63,7 +63,7 @@ void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& 
     std::vector<TetId> around;
     const auto [low, high] = EdgeEnds(key);
     if (!advancing_.contains(key)) {
-      RecordEdgeCrossing(low, high, fraction, &around);
+      RecordEdgeCrossing(low, high, fraction, EdgeCrossingFrom::kBladeLeaving, &around);
     } else {
       // The crack's front advanced along the edge: its point moves there (its vertex went when
       // the blade's point stood in for it), or the far corner snaps.

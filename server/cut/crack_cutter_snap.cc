@@ -18,7 +18,7 @@ using mesh::VertexId;
 
 void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* touched) {
   for (const EdgeCrossing& c : found.edges) {
-    RecordEdgeCrossing(c.low, c.high, c.fraction, touched);
+    RecordEdgeCrossing(c.low, c.high, c.fraction, EdgeCrossingFrom::kSweep, touched);
   }
   for (const FaceCrossing& c : found.faces) {
     if (face_points_.contains(c.face)) continue;
@@ -35,7 +35,7 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
       VertexId low = c.face[i], high = c.face[j];
       double fraction = b[j] / (b[i] + b[j]);
       if (Index(high) < Index(low)) std::swap(low, high), fraction = 1 - fraction;
-      RecordEdgeCrossing(low, high, fraction, touched);
+      RecordEdgeCrossing(low, high, fraction, EdgeCrossingFrom::kSweep, touched);
     } else {
       face_points_[c.face] = {b};
       const std::vector<TetId> units = UnitsAround({c.face[0], c.face[1], c.face[2]});
@@ -45,7 +45,7 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
 }
 
 void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fraction,
-                                     std::vector<TetId>* touched) {
+                                     EdgeCrossingFrom from, std::vector<TetId>* touched) {
   const EdgeKey key = MakeEdgeKey(low, high);
   if (edge_points_.contains(key)) return;
   const double share = SnapShare(std::array<VertexId, 2>{low, high});
@@ -60,13 +60,17 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
       Snap(nearer, touched);
       return;
     }
-    // Too far from the blade's path to snap onto the crack: the point moves away from the
-    // corner instead, out of the snap share (and the sliver share) as far as it may go without
-    // leaving the reach of the blade's crossing.
-    const double length = (mesh_->rest_position(low) - mesh_->rest_position(high)).norm();
-    const double moved =
-        std::min({std::max(share, sliver_share), from_corner + Reach(units) / length, 0.5});
-    fraction = nearer == low ? moved : 1 - moved;
+    // Too far from the blade's path to snap onto the crack: a swept crossing moves away from
+    // the corner instead, out of the snap share (and the sliver share) as far as it may go
+    // without leaving the reach of the blade's crossing. One the blade leaves stays where the
+    // pieces around stood on it: moved, the crack would jump as the blade goes (in a live cut,
+    // the liver's progressive rows of the stability matrix blew up).
+    if (from == EdgeCrossingFrom::kSweep) {
+      const double length = (mesh_->rest_position(low) - mesh_->rest_position(high)).norm();
+      const double moved =
+          std::min({std::max(share, sliver_share), from_corner + Reach(units) / length, 0.5});
+      fraction = nearer == low ? moved : 1 - moved;
+    }
   }
   edge_points_[key] = {fraction};
   touched->insert(touched->end(), units.begin(), units.end());
