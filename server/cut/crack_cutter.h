@@ -32,6 +32,7 @@
 // separates their tets.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <span>
 #include <vector>
@@ -273,6 +274,9 @@ class CrackCutter {
   // TissueScale among them.
   struct Lengths {
     double mean_edge = 0, scale = 0;
+    // The tissue's edge length there: the mean edge, or a made point's scale if larger (a
+    // piece's edges are shorter than its tissue's).
+    double tissue_edge() const { return std::max(mean_edge, scale); }
   };
   Lengths LengthsOf(std::span<const mesh::VertexId> vertices) const;
   // The blade's crossings of faces and edges at a pose, by face and edge (origins).

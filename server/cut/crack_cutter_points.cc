@@ -170,8 +170,7 @@ double CrackCutter::ScaleOf(const std::array<VertexId, 4>& origins,
       used.push_back(origins[k]);
     }
   }
-  const Lengths lengths = LengthsOf(used);
-  return std::max(lengths.scale, lengths.mean_edge);
+  return LengthsOf(used).tissue_edge();
 }
 
 CrackCutter::Lengths CrackCutter::LengthsOf(std::span<const VertexId> vertices) const {

@@ -138,8 +138,7 @@ bool CrackCutter::MaySnap(VertexId v) const {
 double CrackCutter::Reach(const std::vector<TetId>& units) const {
   double edge = std::numeric_limits<double>::infinity();
   for (const TetId u : units) {
-    const Lengths lengths = LengthsOf(CornersOf(u));
-    edge = std::min(edge, std::max(lengths.mean_edge, lengths.scale));
+    edge = std::min(edge, LengthsOf(CornersOf(u)).tissue_edge());
   }
   return kSnapReach * edge;
 }
@@ -147,7 +146,7 @@ double CrackCutter::Reach(const std::vector<TetId>& units) const {
 double CrackCutter::SnapShare(std::span<const VertexId> corners) const {
   const Lengths lengths = LengthsOf(corners);
   const double own = lengths.mean_edge;
-  return own > 0 ? snap_fraction_ * std::max(own, lengths.scale) / own : snap_fraction_;
+  return own > 0 ? snap_fraction_ * lengths.tissue_edge() / own : snap_fraction_;
 }
 
 void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {
