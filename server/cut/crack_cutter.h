@@ -170,6 +170,9 @@ class CrackCutter {
     std::array<FacePoints, 4> points;
     bool cone = false;
     bool opened = false;
+    // The smallest rest volume of its pieces when they were laid out, or last found the same
+    // by a split made anew (m^3; see PiecesStand).
+    double smallest_volume = 0;
   };
   // The blade's points in a tet it meets now.
   struct BladeIn {
@@ -314,7 +317,9 @@ class CrackCutter {
                                         std::span<const FaceKey> to_open = {});
   // Whether the open unit's pieces stand as they are with the blade in it at `points`: the
   // same points as when they were made (only temporary ones moved), no crack face opened, and
-  // every piece still of positive rest volume. A cone's apex then moves with the blade.
+  // every piece still holding over half of OpenTet::smallest_volume (a piece thinned further
+  // by the moving points, the layout is chosen again: a sliver the tissue inverts makes the
+  // corotational law pump energy into it). A cone's apex then moves with the blade.
   bool PiecesStand(mesh::TetId unit, const std::array<FacePoints, 4>& points, const BladeIn& blade);
   // The open unit's pieces and crack faces, by origins, as a split.
   CrackSplit PiecesAsSplit(mesh::TetId unit) const;

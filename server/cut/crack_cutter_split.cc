@@ -1,5 +1,7 @@
 // CrackCutter: splitting units and parting the crack's vertices (see crack_cutter.h).
 #include <algorithm>
+#include <limits>
+#include <span>
 
 #include "base/check.h"
 #include "cut/crack_cutter.h"
@@ -11,6 +13,12 @@ namespace {
 using mesh::Index;
 using mesh::TetId;
 using mesh::VertexId;
+
+double SmallestRestVolume(const mesh::TetMesh& mesh, std::span<const TetId> tets) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const TetId t : tets) smallest = std::min(smallest, mesh::RestVolume(mesh, t));
+  return smallest;
+}
 
 }  // namespace
 
@@ -154,8 +162,11 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   std::sort(crack_faces.begin(), crack_faces.end());
   if (was_open && open_.at(unit).crack == crack_faces &&
       SamePieces(open_.at(unit).pieces, split->tets)) {
-    // Only the temporary points moved (TemporaryVertex moved them): the pieces stand.
-    open_.at(unit).points = points;
+    // Only the temporary points moved (TemporaryVertex moved them): the pieces stand, laid out
+    // for the points as they are now.
+    OpenTet& open = open_.at(unit);
+    open.points = points;
+    open.smallest_volume = SmallestRestVolume(*mesh_, open.pieces);
     return {};
   }
   // Parting can change only at vertices of the crack faces going or coming, and at those with
@@ -182,6 +193,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   const TetId source = was_open ? open_.at(unit).source : SourceTet(unit);
   std::vector<TetId> pieces = Replace(unit, split->tets);
   for (const TetId p : pieces) owner_[p] = unit;
+  const double smallest_volume = SmallestRestVolume(*mesh_, pieces);
   const bool cone = split->kind == CrackSplitKind::kCone;
   const bool opened = !openings.empty() || !to_open.empty();
   open_[unit] = {corners,
@@ -191,7 +203,8 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
                  std::move(openings),
                  std::move(points),
                  cone,
-                 opened};
+                 opened,
+                 smallest_volume};
   return to_part;
 }
 
@@ -218,8 +231,9 @@ bool CrackCutter::PiecesStand(TetId unit, const std::array<FacePoints, 4>& point
   // made anew uses it again or leaves it to go with the unused temporary points.)
   if (it->second.cone) TemporaryVertex(ApexPlace(unit), it->second.corners, blade.apex);
   const std::vector<TetId>& pieces = it->second.pieces;
+  const double floor = 0.5 * it->second.smallest_volume;
   if (std::all_of(pieces.begin(), pieces.end(),
-                  [&](TetId p) { return mesh::RestVolume(*mesh_, p) > 0; })) {
+                  [&](TetId p) { return mesh::RestVolume(*mesh_, p) > floor; })) {
     return true;
   }
   temporary_used_.erase(ApexPlace(unit));
