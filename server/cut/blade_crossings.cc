@@ -20,6 +20,10 @@ using mesh::VertexId;
 
 // The tip's path passes through an edge when it comes this near it, in edge lengths.
 constexpr double kThroughEdge = 1e-9;
+// A sweep's tets are looked for near the blade, not in the sweep's whole box, where the box holds
+// more than this many times the cells of the tube around the blade that holds them (a blade
+// long and oblique to the axes); else the box's tets are hardly more, and cheaper to find.
+constexpr double kNarrowedShare = 3;
 
 }  // namespace
 
@@ -38,6 +42,24 @@ absl::StatusOr<BladeCrossings> BladeCrossings::Create(const mesh::TetMesh* mesh,
   return BladeCrossings(mesh, *std::move(grid));
 }
 
+template <typename Meets>
+bool BladeCrossings::BoxMeets(TetId t, const Meets& meets) const {
+  const mesh::TetVertices& v = mesh_->tet(t);
+  Eigen::Vector3d low = mesh_->current_position(v[0]), high = low;
+  for (int k = 1; k < 4; ++k) {
+    low = low.cwiseMin(mesh_->current_position(v[k]));
+    high = high.cwiseMax(mesh_->current_position(v[k]));
+  }
+  return meets(low, high);
+}
+
+bool BladeCrossings::BoxMeets(TetId t, const Eigen::Vector3d& low,
+                              const Eigen::Vector3d& high) const {
+  return BoxMeets(t, [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    return (lo.array() <= high.array()).all() && (hi.array() >= low.array()).all();
+  });
+}
+
 Eigen::Vector3d BladeCrossings::MovedSincePrevious(VertexId v) const {
   const auto it = previous_.find(Index(v));
   return it == previous_.end() ? Eigen::Vector3d::Zero()
@@ -47,15 +69,34 @@ Eigen::Vector3d BladeCrossings::MovedSincePrevious(VertexId v) const {
 std::vector<TetId> BladeCrossings::Near(const Eigen::Vector3d& low,
                                         const Eigen::Vector3d& high) const {
   std::vector<TetId> near = grid_.Candidates(low, high);
+  std::erase_if(near, [&](TetId t) { return !mesh_->IsAlive(t) || !BoxMeets(t, low, high); });
+  return near;
+}
+
+std::vector<TetId> BladeCrossings::NearSweep(const BladePose& from, const BladePose& to,
+                                             double margin, double box_margin) const {
+  // The swept surface lies within the larger of the tip's and the heel's moves of the blade's
+  // edge at one pose or the other.
+  const double move = std::max((to.tip - from.tip).norm(), (to.heel - from.heel).norm());
+  const double within = margin + move;
+  const auto meets = [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    return geometry::SegmentMeetsBox(from.tip, from.heel, lo, hi, within) ||
+           geometry::SegmentMeetsBox(to.tip, to.heel, lo, hi, within);
+  };
+  const Eigen::Vector3d low =
+      from.tip.cwiseMin(from.heel).cwiseMin(to.tip).cwiseMin(to.heel).array() - box_margin;
+  const Eigen::Vector3d high =
+      from.tip.cwiseMax(from.heel).cwiseMax(to.tip).cwiseMax(to.heel).array() + box_margin;
+  // The cells of the box and of the tube (each widened by the cell a tet is registered in).
+  const double cell = grid_.cell_size();
+  const Eigen::Vector3d cells = ((high - low) / cell).array() + 3;
+  const double along = ((from.heel - from.tip).norm() + 2 * within) / cell + 3;
+  const double across = 2 * within / cell + 3;
+  const bool narrow = cells.prod() > kNarrowedShare * along * across * across;
+  std::vector<TetId> near =
+      narrow ? grid_.Candidates(low, high, meets) : grid_.Candidates(low, high);
   std::erase_if(near, [&](TetId t) {
-    if (!mesh_->IsAlive(t)) return true;
-    const mesh::TetVertices& v = mesh_->tet(t);
-    Eigen::Vector3d box_low = mesh_->current_position(v[0]), box_high = box_low;
-    for (int k = 1; k < 4; ++k) {
-      box_low = box_low.cwiseMin(mesh_->current_position(v[k]));
-      box_high = box_high.cwiseMax(mesh_->current_position(v[k]));
-    }
-    return (box_low.array() > high.array()).any() || (box_high.array() < low.array()).any();
+    return !mesh_->IsAlive(t) || !BoxMeets(t, low, high) || (narrow && !BoxMeets(t, meets));
   });
   return near;
 }

@@ -62,6 +62,15 @@ class BladeCrossings {
 
   // Live tets whose box meets the box [low, high] (on current positions).
   std::vector<mesh::TetId> Near(const Eigen::Vector3d& low, const Eigen::Vector3d& high) const;
+  // Live tets whose box meets the box of the surface the blade's edge sweeps from `from` to `to`
+  // (its two triangles; the blade's edge where they are one pose), grown by `box_margin` (m), on
+  // current positions; where the blade is long and oblique, only those within `margin` (m) of
+  // the surface besides (within that and the blade's move of its edge at either pose): a small
+  // share of the box's.
+  std::vector<mesh::TetId> NearSweep(const BladePose& from, const BladePose& to, double margin,
+                                     double box_margin = 0) const;
+
+  double cell_size() const { return grid_.cell_size(); }  // m
 
   // After the mesh deformed (a physics step). O(vertices).
   absl::Status MeshDeformed() { return grid_.Refresh(); }
@@ -74,6 +83,11 @@ class BladeCrossings {
   // along it): there the crack's front crosses the edge.
   std::optional<double> TipPathThroughEdge(const BladePose& from, const BladePose& to,
                                            mesh::VertexId low, mesh::VertexId high) const;
+
+  // Whether live tet t's current box meets [low, high], or is one `meets(low, high)` accepts.
+  bool BoxMeets(mesh::TetId t, const Eigen::Vector3d& low, const Eigen::Vector3d& high) const;
+  template <typename Meets>
+  bool BoxMeets(mesh::TetId t, const Meets& meets) const;
 
   // How far `v` moved since the previous pose (zero if it was not near the blade then).
   Eigen::Vector3d MovedSincePrevious(mesh::VertexId v) const;

@@ -55,7 +55,7 @@ std::vector<MadeVertex> CrackCutter::TakeMadeVertices() {
 
 std::vector<mesh::TetVertices> CrackCutter::TetsHoldingBlade(const BladePose& pose) const {
   std::vector<mesh::TetVertices> holding;
-  for (const TetId u : UnitsNear(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel))) {
+  for (const TetId u : UnitsAt(pose)) {
     if (!crossings_.BladeMeets(CornersOf(u), pose)) continue;
     if (const auto it = open_.find(u); it != open_.end()) {
       for (const TetId p : it->second.pieces) holding.push_back(mesh_->tet(p));
@@ -140,9 +140,16 @@ Crossings CrackCutter::ByOrigins(Crossings found) const {
   return found;
 }
 
-std::vector<TetId> CrackCutter::UnitsNear(const Eigen::Vector3d& low,
-                                          const Eigen::Vector3d& high) const {
-  std::vector<TetId> units = crossings_.Near(low, high);
+std::vector<TetId> CrackCutter::UnitsAt(const BladePose& pose) const {
+  std::vector<TetId> units =
+      crossings_.Near(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel));
+  for (TetId& t : units) t = UnitOf(t);
+  SortUnique(&units);
+  return units;
+}
+
+std::vector<TetId> CrackCutter::UnitsNearStep(const BladePose& from, const BladePose& to) const {
+  std::vector<TetId> units = crossings_.NearSweep(from, to, kStepMargin * crossings_.cell_size());
   for (TetId& t : units) t = UnitOf(t);
   SortUnique(&units);
   return units;
@@ -177,9 +184,7 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
   if (previous_) {
     const BladePose& from = *previous_;
     step_ = {from, pose};
-    const std::vector<TetId> near =
-        UnitsNear(from.tip.cwiseMin(from.heel).cwiseMin(pose.tip).cwiseMin(pose.heel),
-                  from.tip.cwiseMax(from.heel).cwiseMax(pose.tip).cwiseMax(pose.heel));
+    const std::vector<TetId> near = UnitsNearStep(from, pose);
     const Crossings found = ByOrigins(crossings_.Find(
         from, pose, PlacedCornersOfAll(near),
         [&](VertexId a, VertexId b) {
@@ -211,9 +216,8 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
   }
   previous_ = pose;
   std::vector<VertexId> near_blade;
-  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(0.1 * (pose.heel - pose.tip).norm());
-  for (const TetId t : crossings_.Near(pose.tip.cwiseMin(pose.heel) - margin,
-                                       pose.tip.cwiseMax(pose.heel) + margin)) {
+  const double around = 0.1 * (pose.heel - pose.tip).norm();
+  for (const TetId t : crossings_.NearSweep(pose, pose, around, around)) {
     for (const VertexId v : mesh_->tet(t)) {
       near_blade.push_back(v);
       near_blade.push_back(parting_.Origin(v));
@@ -232,8 +236,7 @@ void CrackCutter::Finish() {
     step_ = {at, at};  // what snaps now snaps within reach of the blade where it was
     Crossings crossed;
     crossed.faces = crossings_.FacesCrossedBy(
-        at, PlacedCornersOfAll(UnitsNear(at.tip.cwiseMin(at.heel), at.tip.cwiseMax(at.heel))),
-        [&](const std::array<VertexId, 3>& f) {
+        at, PlacedCornersOfAll(UnitsAt(at)), [&](const std::array<VertexId, 3>& f) {
           return face_points_.contains(parting_.OriginKey(f[0], f[1], f[2]));
         });
     RecordCrossings(ByOrigins(std::move(crossed)), &touched);

@@ -94,6 +94,10 @@ inline constexpr double kMinTemporaryWeight = 1e-3;
 // (kMinTemporaryWeight, on a face up to twice as high as the edge is long): a blade nearly in the
 // plane of faces crosses every face that near an edge, and left the tets it was in whole.
 inline constexpr double kInPlaneTolerance = 2 * kMinTemporaryWeight;
+// A step looks at the tets within this many grid cells (about a mean edge each) of the surface
+// the blade swept: those it crossed, those with a vertex it may snap (within a fraction of an
+// edge of it) and those whose vertices moved onto it since the last pose.
+inline constexpr double kStepMargin = 0.5;
 
 struct CrackCutterOptions {
   CutMode mode = CutMode::kProgressive;
@@ -226,8 +230,12 @@ class CrackCutter {
   std::vector<mesh::TetVertices> PlacedCornersOfAll(const std::vector<mesh::TetId>& units) const;
   // Crossings found on placed ids, named by origins.
   Crossings ByOrigins(Crossings found) const;
-  // The units with a tet whose box meets [low, high].
-  std::vector<mesh::TetId> UnitsNear(const Eigen::Vector3d& low, const Eigen::Vector3d& high) const;
+  // The units with a tet whose box meets the blade's at `pose`: all of them, so that a face the
+  // blade crosses only by rounding (lying in its plane beside it) is seen from both sides.
+  std::vector<mesh::TetId> UnitsAt(const BladePose& pose) const;
+  // The units with a tet whose box meets that of the surface the blade's edge sweeps from `from`
+  // to `to`, and lies within kStepMargin grid cells of the surface (BladeCrossings::NearSweep).
+  std::vector<mesh::TetId> UnitsNearStep(const BladePose& from, const BladePose& to) const;
   std::vector<mesh::TetId> UnitsAround(const std::vector<mesh::VertexId>& origins) const;
   std::vector<mesh::TetVertices> CornersOfAll(const std::vector<mesh::TetId>& units) const;
 

@@ -21,7 +21,7 @@ absl::flat_hash_map<TetId, CrackCutter::BladeIn> CrackCutter::BladeUnitsAt(
     const BladePose& pose) const {
   absl::flat_hash_map<TetId, BladeIn> blade;
   BladeCrossingsAt at;
-  for (const TetId u : UnitsNear(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel))) {
+  for (const TetId u : UnitsAt(pose)) {
     if (std::optional<BladeIn> in = BladeInUnit(u, pose, &at)) blade[u] = *std::move(in);
   }
   // Every unit at an edge the blade passes through has its point, or meets the blade where the

@@ -159,6 +159,12 @@ void TetGrid::RegisterAgain(std::vector<TetId> stale) {
 
 std::vector<TetId> TetGrid::Candidates(const Eigen::Vector3d& low,
                                        const Eigen::Vector3d& high) const {
+  return Candidates(low, high, [](const Eigen::Vector3d&, const Eigen::Vector3d&) { return true; });
+}
+
+std::vector<TetId> TetGrid::Candidates(
+    const Eigen::Vector3d& low, const Eigen::Vector3d& high,
+    absl::FunctionRef<bool(const Eigen::Vector3d&, const Eigen::Vector3d&)> meets) const {
   // A registered box meeting the query has its centre within its half-extent of the query.
   const std::array<std::int32_t, 3> lo = CellOf(low - max_half_extent_);
   const std::array<std::int32_t, 3> hi = CellOf(high + max_half_extent_);
@@ -167,11 +173,23 @@ std::vector<TetId> TetGrid::Candidates(const Eigen::Vector3d& low,
   for (std::int32_t z = lo[2]; z <= hi[2]; ++z) {
     for (std::int32_t y = lo[1]; y <= hi[1]; ++y) {
       for (std::int32_t x = lo[0]; x <= hi[0]; ++x) {
-        for (const Entry& e : cells_[CellIndex({x, y, z})]) {
+        const absl::InlinedVector<Entry, 6>& cell = cells_[CellIndex({x, y, z})];
+        if (cell.empty()) continue;
+        // The boxes registered here have their centres in the cell (or beyond it, at the
+        // grid's edge: those cells are not narrowed).
+        const Eigen::Vector3d cell_low =
+            origin_ + cell_size_ * Eigen::Vector3d(x, y, z) - max_half_extent_;
+        const Eigen::Vector3d cell_high =
+            cell_low + 2 * max_half_extent_ + Eigen::Vector3d::Constant(cell_size_);
+        const bool at_edge = x == 0 || y == 0 || z == 0 || x == dims_[0] - 1 || y == dims_[1] - 1 ||
+                             z == dims_[2] - 1;
+        if (!at_edge && !meets(cell_low, cell_high)) continue;
+        for (const Entry& e : cell) {
           // Float comparisons: a query corner rounded either way still meets a box rounded
           // outwards whenever the exact ones meet.
           if ((e.low.array() <= query_high.array()).all() &&
-              (e.high.array() >= query_low.array()).all()) {
+              (e.high.array() >= query_low.array()).all() &&
+              meets(e.low.cast<double>(), e.high.cast<double>())) {
             result.push_back(e.tet);
           }
         }

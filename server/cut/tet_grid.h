@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "absl/container/inlined_vector.h"
+#include "absl/functional/function_ref.h"
 #include "absl/status/statusor.h"
 #include "mesh/tet_mesh.h"
 
@@ -45,6 +46,14 @@ class TetGrid {
   // once, others may be. O(cells covered + tets registered in them).
   std::vector<mesh::TetId> Candidates(const Eigen::Vector3d& low,
                                       const Eigen::Vector3d& high) const;
+  // Those of them in cells that may hold a box meeting a region inside [low, high] (a triangle,
+  // a segment): `meets(lo, hi)` says whether the box [lo, hi] may meet it, and must not say no
+  // where it does. Every live tet whose current box meets the region is included once, so the
+  // cost follows the region rather than its bounding box. O(cells covered + tets registered in
+  // those met).
+  std::vector<mesh::TetId> Candidates(
+      const Eigen::Vector3d& low, const Eigen::Vector3d& high,
+      absl::FunctionRef<bool(const Eigen::Vector3d&, const Eigen::Vector3d&)> meets) const;
 
   std::size_t registered_tets() const { return registered_count_; }
   // Tets re-registered by the last Refresh (for tests and benchmarks).

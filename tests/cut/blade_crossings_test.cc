@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
+#include <utility>
 
+#include "mesh/box_lattice.h"
+#include "mesh/mesh_quality.h"
 #include "support/unit_tet.h"
 
 namespace kerf::cut {
@@ -39,6 +43,47 @@ TEST(BladeCrossings, ASweepThroughATetCrossesTheEdgesItPasses) {
       from, to, All(m), [](VertexId a, VertexId b) { return a == VertexId(0) && b == VertexId(1); },
       kNoFace);
   EXPECT_EQ(skipped.edges.size(), 2u);
+}
+
+// The tets near a step of the blade hold every crossing the step makes with the whole mesh:
+// random steps of long oblique blades through a lattice, each found alike from NearSweep's tets
+// and from all of them; and NearSweep lists far fewer tets than meet the step's box.
+TEST(BladeCrossings, TheTetsNearASweepHoldEveryCrossingItMakes) {
+  TetMesh m = *mesh::MakeBoxLattice(
+      {.cells_x = 10, .cells_y = 10, .cells_z = 10, .size = {0.1, 0.1, 0.1}});  // 6,000 tets
+  BladeCrossings crossings = *BladeCrossings::Create(&m, 0.01);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> near_low(-0.01, 0.03), step(-0.004, 0.004);
+  const auto key = [](const EdgeCrossing& e) { return std::pair(e.low, e.high); };
+  std::size_t near_total = 0, box_total = 0, edges_total = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Eigen::Vector3d tip(near_low(random), near_low(random), near_low(random));
+    const Eigen::Vector3d heel =
+        Eigen::Vector3d::Constant(0.1) - Eigen::Vector3d(near_low(random), near_low(random), 0);
+    const Eigen::Vector3d move(step(random), step(random), step(random));
+    const BladePose from{0, tip, heel}, to{0.001, tip + move, heel + 0.5 * move};
+    std::vector<mesh::TetVertices> near;
+    for (const mesh::TetId t : crossings.NearSweep(from, to, 0)) near.push_back(m.tet(t));
+    const Crossings all = crossings.Find(from, to, All(m), kNoEdge, kNoFace);
+    const Crossings found = crossings.Find(from, to, near, kNoEdge, kNoFace);
+    std::vector<std::pair<VertexId, VertexId>> expected, got;
+    for (const EdgeCrossing& e : all.edges) expected.push_back(key(e));
+    for (const EdgeCrossing& e : found.edges) got.push_back(key(e));
+    std::sort(expected.begin(), expected.end());
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, expected) << "trial " << trial;
+    EXPECT_EQ(found.faces.size(), all.faces.size()) << "trial " << trial;
+    near_total += near.size();
+    edges_total += all.edges.size();
+    const Eigen::Vector3d lo = from.tip.cwiseMin(from.heel).cwiseMin(to.tip).cwiseMin(to.heel);
+    const Eigen::Vector3d hi = from.tip.cwiseMax(from.heel).cwiseMax(to.tip).cwiseMax(to.heel);
+    for (const mesh::TetId t : m.tets()) {
+      const mesh::Bounds box = mesh::MeasureTetBounds(m, t, /*current=*/true);
+      box_total += (box.low.array() <= hi.array()).all() && (box.high.array() >= lo.array()).all();
+    }
+  }
+  EXPECT_GT(edges_total, 400u);  // the steps do cross edges
+  EXPECT_LT(near_total, box_total / 3);
 }
 
 TEST(BladeCrossings, TheTipGoingInCrossesAFace) {

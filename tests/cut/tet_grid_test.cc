@@ -6,7 +6,9 @@
 #include <random>
 #include <set>
 
+#include "geometry/segment_box.h"
 #include "mesh/box_lattice.h"
+#include "mesh/mesh_quality.h"
 #include "support/status_message.h"
 
 namespace kerf::cut {
@@ -138,6 +140,30 @@ TEST(TetGrid, QueriesListFewTetsOfALargeMesh) {
   const std::vector<TetId> near = grid.Candidates({0.041, 0.031, 0.021}, {0.042, 0.032, 0.022});
   EXPECT_GT(near.size(), 0u);
   EXPECT_LT(near.size(), 200u);
+}
+
+// A query for a segment across the mesh's diagonal: every tet whose box meets the segment is
+// listed, and the cells away from it are skipped (the box query lists most of the mesh).
+TEST(TetGrid, ANarrowedQueryFollowsTheRegionNotItsBox) {
+  const mesh::TetMesh m = Lattice();  // 1440 tets
+  const TetGrid grid = *TetGrid::Build(m, 0.01, 0.001);
+  const Eigen::Vector3d a(0.001, 0.001, 0.001), b(0.079, 0.059, 0.049);
+  const auto meets = [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    return geometry::SegmentMeetsBox(a, b, lo, hi, 0);
+  };
+  const std::vector<TetId> narrowed = grid.Candidates(a, b, meets);
+  const std::set<TetId> listed(narrowed.begin(), narrowed.end());
+  ASSERT_EQ(listed.size(), narrowed.size()) << "a tet listed twice";
+  int meeting = 0;
+  for (const TetId t : m.tets()) {
+    const mesh::Bounds box = mesh::MeasureTetBounds(m, t, /*current=*/true);
+    if (!meets(box.low, box.high)) continue;
+    ++meeting;
+    EXPECT_TRUE(listed.count(t)) << "tet " << mesh::Index(t) << " missed";
+  }
+  EXPECT_GT(meeting, 20);
+  EXPECT_LT(narrowed.size(), 10u * static_cast<std::size_t>(meeting));
+  EXPECT_GT(grid.Candidates(a, b).size(), 1000u);
 }
 
 TEST(TetGrid, RefusesBadParameters) {
