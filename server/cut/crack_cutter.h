@@ -94,9 +94,10 @@ inline constexpr double kMinTemporaryWeight = 1e-3;
 // (kMinTemporaryWeight, on a face up to twice as high as the edge is long): a blade nearly in the
 // plane of faces crosses every face that near an edge, and left the tets it was in whole.
 inline constexpr double kInPlaneTolerance = 2 * kMinTemporaryWeight;
-// A step looks at the tets within this many grid cells (about a mean edge each) of the surface
-// the blade swept: those it crossed, those with a vertex it may snap (within a fraction of an
-// edge of it) and those whose vertices moved onto it since the last pose.
+// A step looks at the tets in the box of the surface the blade swept and, where the blade is long
+// and oblique to the axes, only at those within this many grid cells (about a mean edge each) of
+// it: those it crossed, those with a vertex it may snap (within a fraction of an edge of it) and
+// those whose vertices moved onto it since the last pose.
 inline constexpr double kStepMargin = 0.5;
 
 struct CrackCutterOptions {

