@@ -10,6 +10,7 @@
 #include "geometry/segment_distance.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
+#include "mesh/mesh_quality.h"
 
 namespace kerf::cut {
 namespace {
@@ -42,34 +43,30 @@ absl::StatusOr<BladeCrossings> BladeCrossings::Create(const mesh::TetMesh* mesh,
   return BladeCrossings(mesh, *std::move(grid));
 }
 
-template <typename Meets>
-bool BladeCrossings::BoxMeets(TetId t, const Meets& meets) const {
-  const mesh::TetVertices& v = mesh_->tet(t);
-  Eigen::Vector3d low = mesh_->current_position(v[0]), high = low;
-  for (int k = 1; k < 4; ++k) {
-    low = low.cwiseMin(mesh_->current_position(v[k]));
-    high = high.cwiseMax(mesh_->current_position(v[k]));
-  }
-  return meets(low, high);
-}
-
-bool BladeCrossings::BoxMeets(TetId t, const Eigen::Vector3d& low,
-                              const Eigen::Vector3d& high) const {
-  return BoxMeets(t, [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-    return (lo.array() <= high.array()).all() && (hi.array() >= low.array()).all();
-  });
-}
-
 Eigen::Vector3d BladeCrossings::MovedSincePrevious(VertexId v) const {
   const auto it = previous_.find(Index(v));
   return it == previous_.end() ? Eigen::Vector3d::Zero()
                                : Eigen::Vector3d(mesh_->current_position(v) - it->second);
 }
 
+namespace {
+
+// Whether boxes [a_low, a_high] and [b_low, b_high] meet.
+bool BoxesMeet(const Eigen::Vector3d& a_low, const Eigen::Vector3d& a_high,
+               const Eigen::Vector3d& b_low, const Eigen::Vector3d& b_high) {
+  return (a_low.array() <= b_high.array()).all() && (a_high.array() >= b_low.array()).all();
+}
+
+}  // namespace
+
 std::vector<TetId> BladeCrossings::Near(const Eigen::Vector3d& low,
                                         const Eigen::Vector3d& high) const {
   std::vector<TetId> near = grid_.Candidates(low, high);
-  std::erase_if(near, [&](TetId t) { return !mesh_->IsAlive(t) || !BoxMeets(t, low, high); });
+  std::erase_if(near, [&](TetId t) {
+    if (!mesh_->IsAlive(t)) return true;
+    const mesh::Bounds box = mesh::MeasureTetBounds(*mesh_, t, /*current=*/true);
+    return !BoxesMeet(box.low, box.high, low, high);
+  });
   return near;
 }
 
@@ -96,7 +93,9 @@ std::vector<TetId> BladeCrossings::NearSweep(const BladePose& from, const BladeP
   std::vector<TetId> near =
       narrow ? grid_.Candidates(low, high, meets) : grid_.Candidates(low, high);
   std::erase_if(near, [&](TetId t) {
-    return !mesh_->IsAlive(t) || !BoxMeets(t, low, high) || (narrow && !BoxMeets(t, meets));
+    if (!mesh_->IsAlive(t)) return true;
+    const mesh::Bounds box = mesh::MeasureTetBounds(*mesh_, t, /*current=*/true);
+    return !BoxesMeet(box.low, box.high, low, high) || (narrow && !meets(box.low, box.high));
   });
   return near;
 }

@@ -84,11 +84,6 @@ class BladeCrossings {
   std::optional<double> TipPathThroughEdge(const BladePose& from, const BladePose& to,
                                            mesh::VertexId low, mesh::VertexId high) const;
 
-  // Whether live tet t's current box meets [low, high], or is one `meets(low, high)` accepts.
-  bool BoxMeets(mesh::TetId t, const Eigen::Vector3d& low, const Eigen::Vector3d& high) const;
-  template <typename Meets>
-  bool BoxMeets(mesh::TetId t, const Meets& meets) const;
-
   // How far `v` moved since the previous pose (zero if it was not near the blade then).
   Eigen::Vector3d MovedSincePrevious(mesh::VertexId v) const;
 

@@ -140,19 +140,18 @@ Crossings CrackCutter::ByOrigins(Crossings found) const {
   return found;
 }
 
+std::vector<TetId> CrackCutter::UnitsOf(std::vector<TetId> tets) const {
+  for (TetId& t : tets) t = UnitOf(t);
+  SortUnique(&tets);
+  return tets;
+}
+
 std::vector<TetId> CrackCutter::UnitsAt(const BladePose& pose) const {
-  std::vector<TetId> units =
-      crossings_.Near(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel));
-  for (TetId& t : units) t = UnitOf(t);
-  SortUnique(&units);
-  return units;
+  return UnitsOf(crossings_.Near(pose.tip.cwiseMin(pose.heel), pose.tip.cwiseMax(pose.heel)));
 }
 
 std::vector<TetId> CrackCutter::UnitsNearStep(const BladePose& from, const BladePose& to) const {
-  std::vector<TetId> units = crossings_.NearSweep(from, to, kStepMargin * crossings_.cell_size());
-  for (TetId& t : units) t = UnitOf(t);
-  SortUnique(&units);
-  return units;
+  return UnitsOf(crossings_.NearSweep(from, to, kStepMargin * crossings_.cell_size()));
 }
 
 std::vector<TetId> CrackCutter::UnitsAround(const std::vector<VertexId>& origins) const {

@@ -231,6 +231,8 @@ class CrackCutter {
   std::vector<mesh::TetVertices> PlacedCornersOfAll(const std::vector<mesh::TetId>& units) const;
   // Crossings found on placed ids, named by origins.
   Crossings ByOrigins(Crossings found) const;
+  // The units of `tets`, each once.
+  std::vector<mesh::TetId> UnitsOf(std::vector<mesh::TetId> tets) const;
   // The units with a tet whose box meets the blade's at `pose`: all of them, so that a face the
   // blade crosses only by rounding (lying in its plane beside it) is seen from both sides.
   std::vector<mesh::TetId> UnitsAt(const BladePose& pose) const;
