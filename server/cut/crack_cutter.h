@@ -11,7 +11,11 @@
 // becomes that edge's point; an edge's within kSliverSnapScale times that where it would make a
 // sliver), and a vertex that near the swept surface, is taken at the corner, which is then on the
 // crack, if the corner lies within kSnapReach of its tets' mean edge of the step's swept surface;
-// farther, an edge's point moves away from the corner instead. The tissue's edge length is the
+// farther, an edge's point moves away from the corner instead. So it does from a vertex of the
+// tissue's surface where the crack, snapped to it, would lie on the surface and what the blade
+// cut under it be lost (SnapWouldLayCrackOnSurface: the blade grazing the surface, its tip just
+// under it, or sweeping along it), and a face's crossing beside an edge of the surface stays a
+// point of the face, moved off the edge to the snap share. The tissue's edge length is the
 // edge's own for the tissue's edges and that of the tet it was cut from for a piece's edge
 // (SnapShare), so a cut through pieces makes none finer than a cut through tets. Points are kept as
 // weights until a split uses them. Edges and faces are named by their vertices' origins
@@ -45,6 +49,7 @@
 #include "cut/crack_split.h"
 #include "cut/cut_statistics.h"
 #include "cut/star_parting.h"
+#include "cut/tissue_surface.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "mesh/tet_mesh.h"
 
@@ -83,6 +88,10 @@ inline constexpr double kSliverAngleDeg = 5;
 // tet's: lab/crack_fidelity.h), so no crack face bends farther than that from the blade's path
 // to reach it.
 inline constexpr double kSnapReach = 0.24;
+// The blade sweeps along the tissue's surface at a vertex where the normal of the surface it swept
+// and the surface's there are within about 26 degrees (the cosine of the angle between them
+// is over this): a vertex there snapped onto the crack would lay the crack on the surface.
+inline constexpr double kAlongSurfaceCosine = 0.9;
 // The blade's crossing of a face is a temporary point unless it is within this (barycentric) of
 // the face's edges; temporary points are not snapped, so the crack follows the blade closely
 // (their thin pieces last only while the blade is in their tet).
@@ -198,6 +207,7 @@ class CrackCutter {
               const CrackCutterOptions& options)
       : mesh_(mesh),
         crossings_(std::move(crossings)),
+        surface_(TissueSurface::Of(*mesh)),
         limits_(limits),
         mode_(options.mode),
         snap_fraction_(std::max(options.snap_fraction, kMinSnapFraction)),
@@ -259,8 +269,17 @@ class CrackCutter {
   // kSnapReach of the smallest mean edge of `units` (the tissue's, for pieces).
   double Reach(const std::vector<mesh::TetId>& units) const;
   // Whether `v` may snap onto the crack: it lies within Reach of its units of the step's swept
-  // surface, and no unit around it has its other three corners on the crack (a chip).
-  bool MaySnap(mesh::VertexId v) const;
+  // surface, no unit around it has its other three corners on the crack (a chip), and, for a
+  // crossing the blade swept (`from`), snapping it would not lay the crack on the tissue's surface
+  // (the blade passing through it to the least snapping, it may).
+  bool MaySnap(mesh::VertexId v, EdgeCrossingFrom from = EdgeCrossingFrom::kSweep) const;
+  // Whether snapping `v`, a vertex of the tissue's surface, would lay the crack on the surface
+  // and lose what the blade cut under it: the tip's path passes within `reach` (m) of the point
+  // of the step's swept surface nearest v, under the surface there, and v lies on the heel's side
+  // of it (the blade came in through the surface near v and went no deeper: it grazed the
+  // surface, or its tip ran just under it), or the blade swept along the surface there
+  // (kAlongSurfaceCosine). False for a vertex not on the surface, or outside a step.
+  bool SnapWouldLayCrackOnSurface(mesh::VertexId v, double reach) const;
   // Whether bisecting one of `units` (those at the edge) at the point `fraction` from `low` to
   // `high` leaves a half under kSliverAngleDeg (rest positions).
   bool BisectionLeavesSliver(mesh::VertexId low, mesh::VertexId high, double fraction,
@@ -407,6 +426,7 @@ class CrackCutter {
 
   mesh::TetMesh* mesh_;
   BladeCrossings crossings_;
+  TissueSurface surface_;
   BladeLimits limits_;
   CutMode mode_;
   double snap_fraction_;

@@ -72,7 +72,8 @@ void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& 
       const double share = SnapShare(std::array<VertexId, 2>{low, high});
       around = UnitsAround({low, high});
       const VertexId nearer = fraction <= 0.5 ? low : high;
-      if (std::min(fraction, 1 - fraction) < share && MaySnap(nearer)) {
+      if (std::min(fraction, 1 - fraction) < share &&
+          MaySnap(nearer, EdgeCrossingFrom::kBladeLeaving)) {
         Snap(nearer, &around);
       } else {
         point = {fraction};

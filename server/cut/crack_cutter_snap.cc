@@ -1,10 +1,12 @@
 // CrackCutter: the blade's crossings recorded as the crack's points, and snapping (see
 // crack_cutter.h).
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
 
 #include "cut/crack_cutter.h"
 #include "geometry/point_triangle_distance.h"
+#include "geometry/segment_distance.h"
 #include "geometry/tet_measures.h"
 
 namespace kerf::cut {
@@ -29,15 +31,27 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     const double share = SnapShare(c.face);
     if (b[largest] > 1 - share && MaySnap(c.face[largest])) {
       Snap(c.face[largest], touched);
-    } else if (b[smallest] < share) {
+      continue;
+    }
+    const int i = (smallest + 1) % 3, j = (smallest + 2) % 3;
+    // Beside the tissue's surface, off an edge of it (not on it, to rounding), the crossing stays
+    // a point of the face, moved off the edge to the snap share: taken at the edge, the crack
+    // would end on the surface, and the blade's cut under it would be lost.
+    const bool beside_surface = b[smallest] > kMinSnapFraction && !surface_.HasFace(c.face) &&
+                                surface_.HasEdge(c.face[i], c.face[j]);
+    if (b[smallest] < share && !beside_surface) {
       // Beside the edge opposite the smallest weight: that edge's crossing.
-      const int i = (smallest + 1) % 3, j = (smallest + 2) % 3;
       VertexId low = c.face[i], high = c.face[j];
       double fraction = b[j] / (b[i] + b[j]);
       if (Index(high) < Index(low)) std::swap(low, high), fraction = 1 - fraction;
       RecordEdgeCrossing(low, high, fraction, EdgeCrossingFrom::kSweep, touched);
     } else {
-      face_points_[c.face] = {b};
+      Eigen::Vector3d w = b;
+      if (w[smallest] < share) {
+        w *= (1 - share) / (1 - w[smallest]);
+        w[smallest] = share;
+      }
+      face_points_[c.face] = {w};
       const std::vector<TetId> units = UnitsAround({c.face[0], c.face[1], c.face[2]});
       touched->insert(touched->end(), units.begin(), units.end());
     }
@@ -56,7 +70,7 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
   const VertexId nearer = fraction <= 0.5 ? low : high;
   if (from_corner < share ||
       (from_corner < sliver_share && BisectionLeavesSliver(low, high, fraction, units))) {
-    if (MaySnap(nearer)) {
+    if (MaySnap(nearer, from)) {
       Snap(nearer, touched);
       return;
     }
@@ -116,6 +130,31 @@ void CrackCutter::SnapVerticesNear(const std::vector<TetId>& units, std::vector<
   }
 }
 
+bool CrackCutter::SnapWouldLayCrackOnSurface(VertexId v, double reach) const {
+  if (!surface_.HasVertex(v) || !step_) return false;
+  const auto& [from, to] = *step_;
+  const Eigen::Vector3d& x = mesh_->current_position(v);
+  // The crack's front: the tip's path near the point of the swept surface nearest the vertex,
+  // under the surface there, the vertex on the heel's side of it (the blade came in through the
+  // surface there and went no deeper; a vertex beyond the tip snaps: the crack then reaches it).
+  const Eigen::Vector3d p = geometry::ClosestPointOnTriangle(x, from.tip, from.heel, to.heel);
+  const Eigen::Vector3d q = geometry::ClosestPointOnTriangle(x, from.tip, to.heel, to.tip);
+  const Eigen::Vector3d& nearest = (p - x).squaredNorm() < (q - x).squaredNorm() ? p : q;
+  const geometry::ClosestPoints front =
+      geometry::ClosestPointsOfSegments(from.tip, to.tip, nearest, nearest);
+  const Eigen::Vector3d tip = from.tip + front.s * (to.tip - from.tip);
+  const Eigen::Vector3d normal = surface_.Normal(*mesh_, v);
+  const Eigen::Vector3d blade = from.heel - from.tip + to.heel - to.tip;
+  if (front.distance < reach && (tip - x).dot(normal) < 0 && (x - tip).dot(blade) > 0) {
+    return true;
+  }
+  // The blade sweeping along the surface there.
+  Eigen::Vector3d swept = (from.heel - from.tip).cross(to.heel - from.tip);
+  if (swept.squaredNorm() == 0) swept = (to.heel - from.tip).cross(to.tip - from.tip);
+  if (swept.squaredNorm() == 0) return true;  // the blade did not move: where it lies is all
+  return std::abs(swept.normalized().dot(normal)) > kAlongSurfaceCosine;
+}
+
 double CrackCutter::DistanceToStep(const Eigen::Vector3d& x) const {
   if (!step_) return 0;
   const auto& [from, to] = *step_;
@@ -123,9 +162,19 @@ double CrackCutter::DistanceToStep(const Eigen::Vector3d& x) const {
                   geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
 }
 
-bool CrackCutter::MaySnap(VertexId v) const {
+bool CrackCutter::MaySnap(VertexId v, EdgeCrossingFrom from) const {
   const std::vector<TetId> units = UnitsAround({v});
-  if (DistanceToStep(mesh_->current_position(v)) > Reach(units)) return false;
+  const double distance = DistanceToStep(mesh_->current_position(v));
+  const double reach = Reach(units);
+  if (distance > reach) return false;
+  // A vertex of the tissue's surface the blade swept past (not through, to the least snapping)
+  // stays off the crack where the crack would then lie on the surface, and what the blade cut
+  // under it be lost. Where the blade lay across an edge and left it, the pieces around stood on
+  // its point: that snaps as anywhere, so the crack does not jump as the blade goes.
+  if (from == EdgeCrossingFrom::kSweep && distance > kMinSnapFraction / kSnapReach * reach &&
+      SnapWouldLayCrackOnSurface(v, reach)) {
+    return false;
+  }
   // Nor may it be the last corner of a tet to come onto the crack: every face of the tet would
   // lie on the crack, and the tet be cut free whole.
   return std::none_of(units.begin(), units.end(), [&](TetId u) {
