@@ -17,7 +17,7 @@ struct BoundaryTriangle {
 };
 
 // Triangles of faces with exactly one live tet, ordered by tet id then corner. A face of a
-// repeated-vertex tet is skipped. O(tets * star size).
+// repeated-vertex tet is skipped. O(tets * log(star size)).
 std::vector<BoundaryTriangle> ExtractBoundarySurface(const TetMesh& mesh);
 
 }  // namespace kerf::mesh

@@ -177,6 +177,19 @@ void BM_ProgressivePoseInsideKTets(benchmark::State& state) {
   state.counters["temporary_tets"] = static_cast<double>(cutter.last_pose().temporary_tets);
 }
 
+// Making a cutter for a mesh (its grid of tets and the tissue's surface): a session does it at
+// the blade's first pose, inside a physics tick.
+void BM_MakeCutter(benchmark::State& state) {
+  const std::unique_ptr<mesh::TetMesh> m = LatticeWithAbout(state.range(0));
+  for (auto _ : state) {
+    absl::StatusOr<CrackCutter> cutter = CrackCutter::Create(m.get(), 0.01);
+    if (!cutter.ok()) state.SkipWithError("the cutter was not made");
+    benchmark::DoNotOptimize(cutter);
+  }
+  state.counters["tets"] = static_cast<double>(m->tet_count());
+}
+
+BENCHMARK(BM_MakeCutter)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PoseInsideACut)
     ->ArgsProduct({{10000, 1000000}, {0, 1}, {0, 1}})
     ->ArgNames({"tets", "progressive", "cold"})
