@@ -1,0 +1,183 @@
+// Snapping (cut/crack_cutter_snap.cc): where crossings are taken at corners, where they move away
+// from them, and what keeps a cut from being lost on the tissue's surface or cutting a tet free.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <optional>
+
+#include "cut/crack_cutter.h"
+#include "lab/crack_fidelity.h"
+#include "mesh/box_lattice.h"
+#include "mesh/connected_components.h"
+#include "mesh/mesh_quality.h"
+#include "mesh/mesh_validation.h"
+#include "support/unit_tet.h"
+
+namespace kerf::cut {
+namespace {
+
+using mesh::TetMesh;
+
+// A second pass beside the first, 0.12 away across pieces whose edges are half the tissue's:
+// its crossings are within the snap fraction of the tissue's edges of the first crack's points
+// (though not of the pieces' edges), so they snap onto them and make no pieces finer than a cut
+// through whole tets would.
+TEST(CrackCutter, CutsThroughPiecesSnapAsFarAsThroughTheirTet) {
+  TetMesh m = kerf::testing::UnitTet();
+  CrackCutter cutter = *CrackCutter::Create(
+      &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100}, {.mode = CutMode::kDeferred});
+  // The plane x = 0.5 swept upwards cuts corner 1 off at its edges' middles.
+  ASSERT_TRUE(cutter.ApplyPose({0, {0.5, -1, -1}, {0.5, 2, -1}}).ok());
+  ASSERT_TRUE(cutter.ApplyPose({1, {0.5, -1, 2}, {0.5, 2, 2}}).ok());
+  ASSERT_TRUE(cutter.ApplyPose({2, {0.62, -1, 2}, {0.62, 2, 2}}).ok());  // above the tet
+  const std::size_t tets = m.tet_count(), vertices = m.vertex_count();
+  ASSERT_GT(tets, 1u);
+  // The plane x = 0.62 swept downwards crosses the corner's edges 0.24 of their pieces' length
+  // from the first points.
+  ASSERT_TRUE(cutter.ApplyPose({3, {0.62, -1, -1}, {0.62, 2, -1}}).ok());
+  cutter.Finish();
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_EQ(m.tet_count(), tets);
+  EXPECT_EQ(m.vertex_count(), vertices);
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+}
+
+// A blade sweeping the plane 0.27 of the way up edge 0-1, in a tet whose corners 0 and 1 stand
+// 45 degrees apart as seen from edge 2-3 (its dihedral angle there): the crossing makes a point
+// there and the tet is cut, its bottom corners, 0.27 of an edge below the blade, within the snap
+// band and snapped. At 17 degrees a tet bisected at that point would leave a half of 4.6 degrees,
+// and the crossing would be taken at corner 0; but that tet is so flat that the blade sweeps along
+// its bottom face, which lies on the tissue's surface, 0.08 of its mean edge above it: snapped,
+// its corners would lay the crack on the surface and nothing be cut. They stay off it (the
+// crossing near corner 0 moves away from it instead) and the skin under the blade is cut.
+TEST(CrackCutter, ACrossingThatWouldLeaveASliverSnapsToItsCorner) {
+  for (const double height : {0.3, 1.0}) {
+    SCOPED_TRACE(::testing::Message() << "corner 1 at height " << height);
+    TetMesh m;
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0, height),
+                                     Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0)}) {
+      m.AddVertex(p);
+    }
+    ASSERT_TRUE(
+        m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)})
+            .ok());
+    CrackCutter cutter =
+        *CrackCutter::Create(&m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100});
+    const double z = 0.27 * height;
+    ASSERT_TRUE(cutter.ApplyPose({0, {-1, -2, z}, {3, -2, z}}).ok());
+    ASSERT_TRUE(cutter.ApplyPose({0.1, {-1, 2, z}, {3, 2, z}}).ok());
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    const bool point_on_edge = std::any_of(m.vertices().begin(), m.vertices().end(), [&](auto v) {
+      return (m.rest_position(v) - Eigen::Vector3d(1, 0, z)).norm() < 1e-12;
+    });
+    EXPECT_EQ(point_on_edge, height == 1.0);
+    if (height == 1.0) {
+      EXPECT_EQ(cutter.statistics().snapped_vertices, 3u);
+    } else {
+      EXPECT_LT(cutter.statistics().snapped_vertices, 3u);  // the bottom face stays off the crack
+    }
+    EXPECT_EQ(cutter.statistics().cut_tets, 1u);
+  }
+}
+
+// A tet with three short edges at one end and three long ones to its far corner (mean edge
+// 1.67): the plane x = 0.45 crosses the long edges 0.15 of their length from the short end, within
+// the snap fraction (0.2), but its corners there lie 0.27 of the tet's mean edge from the plane.
+// Snapped onto the crack, the crack would be their face, 0.27 l from where the blade went (and
+// on the tissue's surface: nothing cut). Instead the points move away from them, no farther from
+// the blade's path than a quarter of the mean edge: the tip is cut off, every sample covered and
+// no crack face overcut.
+TEST(CrackCutter, AVertexFarFromTheBladeInItsTetsIsNotSnappedOntoTheCrack) {
+  for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+    SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
+    TetMesh m;
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(3, 0, 0),
+                                     Eigen::Vector3d(0, 0.3, 0), Eigen::Vector3d(0, 0, 0.3)}) {
+      m.AddVertex(p);
+    }
+    ASSERT_TRUE(
+        m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)})
+            .ok());
+    const TetMesh tissue = m;
+    CrackCutter cutter =
+        *CrackCutter::Create(&m, mesh::MeanEdgeLength(m),
+                             {.max_length = 10, .max_step = 10, .max_speed = 100}, {.mode = mode});
+    lab::FidelityMeter meter(tissue);
+    const BladePose from{0, {0.45, -1, -1}, {0.45, 2, -1}}, to{0.1, {0.45, -1, 2}, {0.45, 2, 2}};
+    ASSERT_TRUE(cutter.ApplyPose(from).ok());
+    ASSERT_TRUE(cutter.ApplyPose(to).ok());
+    cutter.Finish();
+    meter.AddStep(from, to);
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_EQ(mesh::FindConnectedComponents(m).count, 2u);
+    EXPECT_EQ(cutter.statistics().snapped_vertices, 0u);
+    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+    EXPECT_GT(f.samples, 0u);
+    EXPECT_EQ(f.coverage, 1);
+    EXPECT_EQ(f.overcut_faces, 0u);
+  }
+}
+
+// A flat tet, two corners 0.005 below the plane z = 0 and two 0.005 above, swept by a blade in
+// that plane: every corner lies on the blade's path to the least snapping (so the tissue's surface
+// keeps none off the crack), but the last one to snap would put all four on the crack and cut the
+// tet free whole (a chip). Three snap; the fourth's edges get points, and the tet is split along
+// the blade.
+TEST(CrackCutter, NoTetIsCutFreeWholeBySnappingAllItsCorners) {
+  TetMesh m;
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, -0.005), Eigen::Vector3d(1, 0, 0.005),
+                                   Eigen::Vector3d(0, 1, 0.005), Eigen::Vector3d(1, 1, -0.005)}) {
+    m.AddVertex(p);
+  }
+  ASSERT_TRUE(
+      m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)}).ok());
+  CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m),
+                                            {.max_length = 10, .max_step = 10, .max_speed = 100});
+  ASSERT_TRUE(cutter.ApplyPose({0, {-1, -1, 0}, {-1, 2, 0}}).ok());
+  ASSERT_TRUE(cutter.ApplyPose({0.1, {2, -1, 0}, {2, 2, 0}}).ok());
+  cutter.Finish();
+  ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_EQ(cutter.statistics().snapped_vertices, 3u);
+  EXPECT_GT(m.tet_count(), 1u);
+}
+
+// A blade grazing the tissue: its tip 0.05 of an edge under the top of a lattice, sweeping
+// across it; or lying flat 0.1 under the top, shaving it. The vertices of the top lie within the
+// snap band of the blade's path; snapped onto the crack, they would lay it on the surface and
+// nothing would be cut. They stay off it, and the crack covers every sample of the swept surface.
+TEST(CrackCutter, ABladeGrazingTheSurfaceCutsTheSkinUnderIt) {
+  for (const bool flat : {false, true}) {
+    for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+      SCOPED_TRACE(::testing::Message()
+                   << (flat ? "flat" : "tip under the top") << ", "
+                   << (mode == CutMode::kProgressive ? "progressive" : "deferred"));
+      TetMesh m = *mesh::MakeBoxLattice({.cells_x = 3, .cells_y = 3, .cells_z = 2});
+      const TetMesh tissue = m;
+      CrackCutter cutter = *CrackCutter::Create(
+          &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 1000}, {.mode = mode});
+      lab::FidelityMeter meter(tissue);
+      std::optional<BladePose> last;
+      for (int k = 0; k <= 16; ++k) {
+        const double x = -0.5 + 0.25 * k;
+        const BladePose pose = flat ? BladePose{0.01 * k, {x, -0.5, 1.9}, {x, 3.5, 1.9}}
+                                    : BladePose{0.01 * k, {x, 1.3, 1.95}, {x, 1.3, 3}};
+        ASSERT_TRUE(cutter.ApplyPose(pose).ok());
+        if (last) meter.AddStep(*last, pose);
+        last = pose;
+      }
+      cutter.Finish();
+      ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+      EXPECT_GT(cutter.statistics().cut_tets, 0u);
+      const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+      EXPECT_GT(f.samples, 0u);
+      // Flat, the box's top edges stay uncut along a rim: their vertices' normals are 45 degrees
+      // from the blade's plane, so they snap, and the skin there is left on the surface.
+      EXPECT_GE(f.coverage, flat ? 0.97 : 1.0);
+      EXPECT_EQ(f.overcut_faces, 0u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace kerf::cut
