@@ -104,11 +104,20 @@ Crossings BladeCrossings::Find(
     const BladePose& from, const BladePose& to, const std::vector<mesh::TetVertices>& tets,
     const std::function<bool(VertexId, VertexId)>& skip_edge,
     const std::function<bool(const std::array<VertexId, 3>&)>& skip_face) const {
-  const auto motion = [&](VertexId v) {
-    const Eigen::Vector3d& x = mesh_->current_position(v);
-    return geometry::Motion{x - MovedSincePrevious(v), x};
+  // Each vertex's motion once (a vertex is a corner of a few of the tets, and of several edges
+  // and faces in each).
+  absl::flat_hash_map<VertexId, geometry::Motion> motions;
+  const auto motion = [&](VertexId v) -> const geometry::Motion& {
+    const auto [it, inserted] = motions.try_emplace(v);
+    if (inserted) {
+      const Eigen::Vector3d& x = mesh_->current_position(v);
+      it->second = {x - MovedSincePrevious(v), x};
+    }
+    return it->second;
   };
   const geometry::Motion tip{from.tip, to.tip}, heel{from.heel, to.heel};
+  // The box of the tip's path: an edge whose box it misses is not passed through.
+  const Eigen::Vector3d tip_low = from.tip.cwiseMin(to.tip), tip_high = from.tip.cwiseMax(to.tip);
   Crossings found;
   absl::flat_hash_set<std::uint64_t> tested_edges;
   absl::flat_hash_set<std::array<VertexId, 3>> tested_faces;
@@ -117,9 +126,18 @@ Crossings BladeCrossings::Find(
       const VertexId lo = Index(v[i]) < Index(v[j]) ? v[i] : v[j];
       const VertexId hi = lo == v[i] ? v[j] : v[i];
       if (!tested_edges.insert(MakeEdgeKey(lo, hi)).second || skip_edge(lo, hi)) continue;
-      if (const auto c = geometry::FirstEdgeCrossing(motion(lo), motion(hi), tip, heel)) {
+      const geometry::Motion& a = motion(lo);
+      const geometry::Motion& b = motion(hi);
+      if (const auto c = geometry::FirstEdgeCrossing(a, b, tip, heel)) {
         found.edges.push_back({lo, hi, c->fraction});
-      } else if (const std::optional<double> at = TipPathThroughEdge(from, to, lo, hi)) {
+        continue;
+      }
+      const Eigen::Vector3d slack =
+          Eigen::Vector3d::Constant(2 * kThroughEdge * (a.to - b.to).norm());
+      const Eigen::Vector3d overlap_low = (a.to.cwiseMin(b.to) - slack).cwiseMax(tip_low);
+      const Eigen::Vector3d overlap_high = (a.to.cwiseMax(b.to) + slack).cwiseMin(tip_high);
+      if ((overlap_low.array() > overlap_high.array()).any()) continue;
+      if (const std::optional<double> at = TipPathThroughEdge(from, to, lo, hi)) {
         found.edges.push_back({lo, hi, *at});
       }
     }

@@ -299,8 +299,9 @@ void CrackCutter::Join(const std::vector<TetId>& units) {
 void CrackCutter::SplitReadyGroups(const BladePose* pose) {
   std::vector<TetId> ready;
   for (const auto& [root, members] : members_) {
+    // Newest members first: the blade is where the cut grew last.
     const bool blade_in =
-        pose != nullptr && std::any_of(members.begin(), members.end(), [&](TetId t) {
+        pose != nullptr && std::any_of(members.rbegin(), members.rend(), [&](TetId t) {
           return crossings_.BladeMeets(CornersOf(t), *pose);
         });
     if (!blade_in) ready.push_back(root);
