@@ -107,7 +107,8 @@ Crossings BladeCrossings::Find(
   // Each vertex's motion once (a vertex is a corner of a few of the tets, and of several edges
   // and faces in each).
   absl::flat_hash_map<VertexId, geometry::Motion> motions;
-  const auto motion = [&](VertexId v) -> const geometry::Motion& {
+  // By value: a later lookup may move the map's entries.
+  const auto motion = [&](VertexId v) -> geometry::Motion {
     const auto [it, inserted] = motions.try_emplace(v);
     if (inserted) {
       const Eigen::Vector3d& x = mesh_->current_position(v);
@@ -126,8 +127,7 @@ Crossings BladeCrossings::Find(
       const VertexId lo = Index(v[i]) < Index(v[j]) ? v[i] : v[j];
       const VertexId hi = lo == v[i] ? v[j] : v[i];
       if (!tested_edges.insert(MakeEdgeKey(lo, hi)).second || skip_edge(lo, hi)) continue;
-      const geometry::Motion& a = motion(lo);
-      const geometry::Motion& b = motion(hi);
+      const geometry::Motion a = motion(lo), b = motion(hi);
       if (const auto c = geometry::FirstEdgeCrossing(a, b, tip, heel)) {
         found.edges.push_back({lo, hi, c->fraction});
         continue;
