@@ -264,6 +264,9 @@ class CrackCutter {
   // no edge inside).
   void SnapVerticesNear(const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
+  // The point of the step's swept surface (its two triangles) nearest `x`, current positions;
+  // only within a step.
+  Eigen::Vector3d NearestOnStep(const Eigen::Vector3d& x) const;
   // The distance from `x` (current positions) to the step's swept surface (0 outside a step).
   double DistanceToStep(const Eigen::Vector3d& x) const;
   // kSnapReach of the smallest mean edge of `units` (the tissue's, for pieces).

@@ -137,9 +137,7 @@ bool CrackCutter::SnapWouldLayCrackOnSurface(VertexId v, double reach) const {
   // The crack's front: the tip's path near the point of the swept surface nearest the vertex,
   // under the surface there, the vertex on the heel's side of it (the blade came in through the
   // surface there and went no deeper; a vertex beyond the tip snaps: the crack then reaches it).
-  const Eigen::Vector3d p = geometry::ClosestPointOnTriangle(x, from.tip, from.heel, to.heel);
-  const Eigen::Vector3d q = geometry::ClosestPointOnTriangle(x, from.tip, to.heel, to.tip);
-  const Eigen::Vector3d& nearest = (p - x).squaredNorm() < (q - x).squaredNorm() ? p : q;
+  const Eigen::Vector3d nearest = NearestOnStep(x);
   const geometry::ClosestPoints front =
       geometry::ClosestPointsOfSegments(from.tip, to.tip, nearest, nearest);
   const Eigen::Vector3d tip = from.tip + front.s * (to.tip - from.tip);
@@ -155,11 +153,15 @@ bool CrackCutter::SnapWouldLayCrackOnSurface(VertexId v, double reach) const {
   return std::abs(swept.normalized().dot(normal)) > kAlongSurfaceCosine;
 }
 
-double CrackCutter::DistanceToStep(const Eigen::Vector3d& x) const {
-  if (!step_) return 0;
+Eigen::Vector3d CrackCutter::NearestOnStep(const Eigen::Vector3d& x) const {
   const auto& [from, to] = *step_;
-  return std::min(geometry::DistanceToTriangle(x, from.tip, from.heel, to.heel),
-                  geometry::DistanceToTriangle(x, from.tip, to.heel, to.tip));
+  const Eigen::Vector3d p = geometry::ClosestPointOnTriangle(x, from.tip, from.heel, to.heel);
+  const Eigen::Vector3d q = geometry::ClosestPointOnTriangle(x, from.tip, to.heel, to.tip);
+  return (p - x).squaredNorm() < (q - x).squaredNorm() ? p : q;
+}
+
+double CrackCutter::DistanceToStep(const Eigen::Vector3d& x) const {
+  return step_ ? (NearestOnStep(x) - x).norm() : 0;
 }
 
 bool CrackCutter::MaySnap(VertexId v, EdgeCrossingFrom from) const {
