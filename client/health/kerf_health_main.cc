@@ -15,9 +15,13 @@
 ABSL_FLAG(std::string, server, "127.0.0.1:50051", "the kerf-server, host:port");
 ABSL_FLAG(std::string, tls_ca, "", "PEM root certificate(s) to trust: TLS (plaintext when empty)");
 ABSL_FLAG(double, timeout_seconds, 3, "how long to wait for the answer");
+ABSL_FLAG(bool, wait, false,
+          "wait (up to --timeout_seconds) for a server that is not listening yet, instead of "
+          "failing at once: for scripts that start one");
 
 int main(int argc, char** argv) {
-  absl::SetProgramUsageMessage("kerf-health [--server=HOST:PORT] [--tls_ca=CA.pem]");
+  absl::SetProgramUsageMessage(
+      "kerf-health [--server=HOST:PORT] [--tls_ca=CA.pem] [--timeout_seconds=S] [--wait]");
   absl::ParseCommandLine(argc, argv);
   absl::StatusOr<std::shared_ptr<grpc::Channel>> channel =
       kerf::client::OpenChannel(absl::GetFlag(FLAGS_server), absl::GetFlag(FLAGS_tls_ca));
@@ -29,6 +33,7 @@ int main(int argc, char** argv) {
   // is field 1 = 1 (bytes 08 01). No generated code is needed for that.
   grpc::GenericStub stub(*channel);
   grpc::ClientContext context;
+  context.set_wait_for_ready(absl::GetFlag(FLAGS_wait));
   context.set_deadline(
       std::chrono::system_clock::now() +
       std::chrono::milliseconds(static_cast<int>(1000 * absl::GetFlag(FLAGS_timeout_seconds))));

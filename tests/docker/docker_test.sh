@@ -70,5 +70,5 @@ grep -q 'kerf-health' "$compose" || fail "compose.yaml has no kerf-health health
 grep -q 'profiles: \[load\]' "$compose" || fail "compose.yaml has no load profile"
 grep -q '"50051:50051"' "$compose" || fail "compose.yaml does not publish the gRPC port"
 grep -q '"127.0.0.1:8080:8080"' "$compose" || fail "compose.yaml does not publish the HTTP port on loopback"
-grep -q '^image nodejs$' "$src/scripts/packages.txt" || fail "packages.txt lacks the image's Node.js"
+grep -q '^build nodejs node$' "$src/scripts/packages.txt" || fail "packages.txt lacks Node.js"
 echo "docker_test: ok"
