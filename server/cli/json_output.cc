@@ -1,7 +1,6 @@
 #include "cli/json_output.h"
 
-#include <cassert>
-
+#include "base/check.h"
 #include "google/protobuf/util/json_util.h"
 
 namespace kerf::cli {
@@ -12,9 +11,8 @@ std::string FormatProtoJson(const google::protobuf::Message& message) {
   options.always_print_primitive_fields = true;
   options.preserve_proto_field_names = true;
   std::string json;
-  [[maybe_unused]] const auto status =
-      google::protobuf::util::MessageToJsonString(message, &json, options);
-  assert(status.ok());
+  const auto status = google::protobuf::util::MessageToJsonString(message, &json, options);
+  KERF_CHECK(status.ok());
   return json;
 }
 

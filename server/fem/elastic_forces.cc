@@ -3,8 +3,9 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
-#include <cassert>
 #include <cmath>
+
+#include "base/check.h"
 
 namespace kerf::fem {
 namespace {
@@ -64,7 +65,7 @@ Eigen::Quaterniond ExtractRotation(const Eigen::Matrix3d& f, Eigen::Quaterniond 
 
 ElasticForces::ElasticForces(const TensorMassModel& model, ElasticOptions options)
     : model_(&model), options_(options), rotating_(options.law == ElasticLaw::kCorotational) {
-  assert(options.auto_strain > 0);
+  KERF_CHECK(options.auto_strain > 0);
 }
 
 void ElasticForces::Update(std::span<const Eigen::Vector3d> u) {

@@ -1,15 +1,16 @@
 #include "fem/explicit_integrator.h"
 
-#include <cassert>
 #include <cmath>
 #include <random>
+
+#include "base/check.h"
 
 namespace kerf::fem {
 
 ExplicitIntegrator::ExplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
                                        ElasticOptions elastic, std::optional<SleepOptions> sleep)
     : model_(&model), forces_(model, elastic) {
-  assert(!sleep.has_value() || elastic.law == ElasticLaw::kLinear);
+  KERF_CHECK(!sleep.has_value() || elastic.law == ElasticLaw::kLinear);
   if (sleep.has_value()) sleeping_ = std::make_unique<SleepingVertices>(model, *sleep);
   Refresh(bc);
 }

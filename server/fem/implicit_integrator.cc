@@ -1,17 +1,18 @@
 #include "fem/implicit_integrator.h"
 
 #include <Eigen/LU>
-#include <cassert>
 #include <cmath>
 #include <span>
+
+#include "base/check.h"
 
 namespace kerf::fem {
 ImplicitIntegrator::ImplicitIntegrator(const TensorMassModel& model, const BoundaryConditions& bc,
                                        ImplicitSolveOptions options, ElasticOptions elastic,
                                        std::optional<SleepOptions> sleep)
     : model_(&model), options_(options), forces_(model, elastic) {
-  assert(options.tolerance > 0 && options.max_iterations > 0);
-  assert(!sleep.has_value() || elastic.law == ElasticLaw::kLinear);
+  KERF_CHECK(options.tolerance > 0 && options.max_iterations > 0);
+  KERF_CHECK(!sleep.has_value() || elastic.law == ElasticLaw::kLinear);
   if (sleep.has_value()) sleeping_ = std::make_unique<SleepingVertices>(model, *sleep);
   Refresh(bc);
 }
@@ -76,7 +77,7 @@ double ImplicitIntegrator::MultiplySystem(double a, double b, const std::vector<
 }
 
 void ImplicitIntegrator::Step(double dt, DynamicState* state) {
-  assert(dt > 0);
+  KERF_CHECK(dt > 0);
   const std::size_t n = model_->vertex_count();
   state->displacement.resize(n, Eigen::Vector3d::Zero());
   state->velocity.resize(n, Eigen::Vector3d::Zero());

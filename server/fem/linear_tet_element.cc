@@ -2,8 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
-#include <cassert>
 #include <cmath>
+
+#include "base/check.h"
 
 namespace kerf::fem {
 
@@ -11,7 +12,7 @@ std::array<Eigen::Vector3d, 4> ShapeFunctionGradients(const std::array<Eigen::Ve
   // Columns are the edges from corner 0; the rows of the inverse are g_1, g_2, g_3.
   Eigen::Matrix3d edges;
   edges << x[1] - x[0], x[2] - x[0], x[3] - x[0];
-  assert(edges.determinant() != 0);
+  KERF_CHECK(edges.determinant() != 0);
   const Eigen::Matrix3d inverse = edges.inverse();
   std::array<Eigen::Vector3d, 4> g;
   for (int a = 1; a < 4; ++a) g[a] = inverse.row(a - 1).transpose();

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cassert>
+
+#include "base/check.h"
 
 namespace kerf::fem {
 
@@ -10,7 +11,7 @@ using mesh::Index;
 
 SleepingVertices::SleepingVertices(const TensorMassModel& model, SleepOptions options)
     : model_(&model), options_(options), seen_(model.mesh().change_log().Mark()) {
-  assert(options.rest_speed >= 0 && options.wake_acceleration > 0 && options.quiet_time >= 0);
+  KERF_CHECK(options.rest_speed >= 0 && options.wake_acceleration > 0 && options.quiet_time >= 0);
 }
 
 void SleepingVertices::Wake(std::uint32_t i) {
@@ -73,7 +74,7 @@ void SleepingVertices::Refresh(const BoundaryConditions& bc,
 
 void SleepingVertices::Update(double dt, std::span<const Eigen::Vector3d> external,
                               DynamicState* state) {
-  assert(dt > 0);
+  KERF_CHECK(dt > 0);
   changed_ = false;
   const double calm = options_.wake_acceleration / 2;
   bool fell_asleep = false;

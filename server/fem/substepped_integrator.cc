@@ -1,8 +1,9 @@
 #include "fem/substepped_integrator.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
+
+#include "base/check.h"
 
 namespace kerf::fem {
 
@@ -31,7 +32,7 @@ SubsteppedIntegrator::SubsteppedIntegrator(const TensorMassModel& model,
                                            const BoundaryConditions& bc, ElasticOptions elastic,
                                            double fraction)
     : model_(&model), steps_(model, bc, elastic), fraction_(fraction) {
-  assert(fraction > 0 && fraction <= 1);
+  KERF_CHECK(fraction > 0 && fraction <= 1);
 }
 
 void SubsteppedIntegrator::Refresh(const BoundaryConditions& bc) {
@@ -40,7 +41,7 @@ void SubsteppedIntegrator::Refresh(const BoundaryConditions& bc) {
 }
 
 void SubsteppedIntegrator::Step(double dt, DynamicState* state) {
-  assert(dt > 0);
+  KERF_CHECK(dt > 0);
   if (stale_) {
     bound_ = BoundCriticalTimeStep(*model_);
     stale_ = false;

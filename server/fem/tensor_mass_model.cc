@@ -2,10 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <cassert>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "base/check.h"
 #include "fem/linear_tet_element.h"
 
 namespace kerf::fem {
@@ -192,7 +192,7 @@ const EdgeTensor* TensorMassModel::FindEdge(VertexId a, VertexId b) const {
 
 void TensorMassModel::MultiplyStiffness(std::span<const Eigen::Vector3d> u,
                                         std::span<Eigen::Vector3d> f) const {
-  assert(u.size() >= vertex_tensors_.size() && f.size() >= vertex_tensors_.size());
+  KERF_CHECK(u.size() >= vertex_tensors_.size() && f.size() >= vertex_tensors_.size());
   for (const std::uint32_t i : active_) f[i] = vertex_tensors_[i] * u[i];
   for (const EdgeTensor& e : edges_) {
     const std::uint32_t a = Index(e.a), b = Index(e.b);

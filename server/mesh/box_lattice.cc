@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <utility>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "base/check.h"
 #include "geometry/tet_measures.h"
 
 namespace kerf::mesh {
@@ -95,8 +95,8 @@ absl::StatusOr<TetMesh> MakeBoxLattice(const BoxLatticeSpec& spec) {
         tet[s + 1] = vertex_at(corner[0], corner[1], corner[2]);
       }
       if (p >= 3) std::swap(tet[2], tet[3]);
-      [[maybe_unused]] const absl::StatusOr<TetId> added = mesh.AddTet(tet);
-      assert(added.ok());
+      const absl::StatusOr<TetId> added = mesh.AddTet(tet);
+      KERF_CHECK(added.ok());
     }
   }
   return mesh;

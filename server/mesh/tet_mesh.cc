@@ -1,9 +1,9 @@
 #include "mesh/tet_mesh.h"
 
 #include <algorithm>
-#include <cassert>
 
 #include "absl/strings/str_cat.h"
+#include "base/check.h"
 #include "geometry/tet_measures.h"
 
 namespace kerf::mesh {
@@ -64,21 +64,6 @@ absl::Status TetMesh::MoveVertex(VertexId v, const Eigen::Vector3d& rest_positio
   return absl::OkStatus();
 }
 
-const Eigen::Vector3d& TetMesh::rest_position(VertexId v) const {
-  assert(IsAlive(v));
-  return rest_[Index(v)];
-}
-
-const Eigen::Vector3d& TetMesh::current_position(VertexId v) const {
-  assert(IsAlive(v));
-  return current_[Index(v)];
-}
-
-void TetMesh::set_current_position(VertexId v, const Eigen::Vector3d& position) {
-  assert(IsAlive(v));
-  current_[Index(v)] = position;
-}
-
 absl::StatusOr<TetId> TetMesh::AddTet(const TetVertices& vertices) {
   for (const VertexId v : vertices) {
     if (!IsAlive(v)) {
@@ -104,7 +89,7 @@ absl::Status TetMesh::RemoveTet(TetId t) {
     if (!IsFirstOccurrence(vertices, i)) continue;
     Star& star = stars_[Index(vertices[i])];
     const auto it = std::find(star.begin(), star.end(), t);
-    assert(it != star.end());
+    KERF_CHECK(it != star.end());
     *it = star.back();  // order in a star carries no meaning
     star.pop_back();
   }
@@ -112,22 +97,6 @@ absl::Status TetMesh::RemoveTet(TetId t) {
   --tet_count_;
   change_log_.RecordRemovedTet(t);
   return absl::OkStatus();
-}
-
-const TetVertices& TetMesh::tet(TetId t) const {
-  assert(IsAlive(t));
-  return tets_[Index(t)];
-}
-
-const TetVertices& TetMesh::tet_even_if_removed(TetId t) const {
-  assert(Index(t) < tets_.size());
-  return tets_[Index(t)];
-}
-
-std::span<const TetId> TetMesh::TetsAround(VertexId v) const {
-  assert(IsAlive(v));
-  const Star& star = stars_[Index(v)];
-  return {star.data(), star.size()};
 }
 
 TetMesh::TetList TetMesh::TetsAroundEdge(VertexId a, VertexId b) const {

@@ -25,6 +25,7 @@
 #include "absl/container/inlined_vector.h"
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "base/check.h"
 #include "mesh/mesh_change_log.h"
 #include "mesh/mesh_ids.h"
 
@@ -106,10 +107,19 @@ class TetMesh {
   std::uint32_t vertex_index_bound() const { return static_cast<std::uint32_t>(rest_.size()); }
   LiveIdRange<VertexId> vertices() const { return LiveIdRange<VertexId>(vertex_alive_); }
 
-  // Positions of a live vertex (asserted).
-  const Eigen::Vector3d& rest_position(VertexId v) const;
-  const Eigen::Vector3d& current_position(VertexId v) const;
-  void set_current_position(VertexId v, const Eigen::Vector3d& position);
+  // Positions of a live vertex (checked).
+  const Eigen::Vector3d& rest_position(VertexId v) const {
+    KERF_CHECK(IsAlive(v));
+    return rest_[Index(v)];
+  }
+  const Eigen::Vector3d& current_position(VertexId v) const {
+    KERF_CHECK(IsAlive(v));
+    return current_[Index(v)];
+  }
+  void set_current_position(VertexId v, const Eigen::Vector3d& position) {
+    KERF_CHECK(IsAlive(v));
+    current_[Index(v)] = position;
+  }
 
   // All positions indexed by Index(id). A removed vertex's slot keeps its last positions.
   std::span<const Eigen::Vector3d> rest_positions() const { return rest_; }
@@ -132,16 +142,26 @@ class TetMesh {
   std::uint32_t tet_index_bound() const { return static_cast<std::uint32_t>(tets_.size()); }
   LiveIdRange<TetId> tets() const { return LiveIdRange<TetId>(tet_alive_); }
 
-  // The corners of a live tet (asserted).
-  const TetVertices& tet(TetId t) const;
+  // The corners of a live tet (checked).
+  const TetVertices& tet(TetId t) const {
+    KERF_CHECK(IsAlive(t));
+    return tets_[Index(t)];
+  }
   // The corners of any tet ever added, live or removed: a removed tet's slot keeps them, so
-  // data attached to it can be taken back exactly (asserted: t was issued).
-  const TetVertices& tet_even_if_removed(TetId t) const;
+  // data attached to it can be taken back exactly (checked: t was issued).
+  const TetVertices& tet_even_if_removed(TetId t) const {
+    KERF_CHECK(Index(t) < tets_.size());
+    return tets_[Index(t)];
+  }
 
   // --- Adjacency -----------------------------------------------------------------------------
 
   // The live tets using vertex v, in no particular order. O(1).
-  std::span<const TetId> TetsAround(VertexId v) const;
+  std::span<const TetId> TetsAround(VertexId v) const {
+    KERF_CHECK(IsAlive(v));
+    const Star& star = stars_[Index(v)];
+    return {star.data(), star.size()};
+  }
 
   // The live tets having both a and b as corners. O(star of a).
   TetList TetsAroundEdge(VertexId a, VertexId b) const;

@@ -1,9 +1,9 @@
 #include "service/level_view.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cstring>
 
+#include "base/check.h"
 #include "mesh/boundary_surface.h"
 #include "service/sha256.h"
 
@@ -79,7 +79,7 @@ LevelView::LevelView(kerf::v1::Level level, const sim::Simulation& simulation)
       original_vertex_bound_(simulation.mesh().vertex_index_bound()) {}
 
 kerf::v1::Frame LevelView::Advance(const TickReport& report, std::uint64_t sequence) {
-  assert(sequence > sequence_);
+  KERF_CHECK(sequence > sequence_);
   kerf::v1::Frame frame;
   switch (level_) {
     case kerf::v1::SURFACE:
@@ -254,7 +254,7 @@ void LevelView::UpdateSurface(kerf::v1::Frame* frame) {
 void LevelView::FillArrays(const TickReport& report, kerf::v1::Frame* frame) const {
   const mesh::TetMesh& m = simulation_->mesh();
   if (level_ == kerf::v1::FORCES) {
-    assert(report.nodal_forces.size() >= m.vertex_index_bound());
+    KERF_CHECK(report.nodal_forces.size() >= m.vertex_index_bound());
     std::string* out = frame->mutable_nodal_forces();
     out->reserve(12 * vertices_.size());
     for (const std::uint32_t v : vertices_) AppendFloat32(report.nodal_forces[v], out);

@@ -1,12 +1,12 @@
 #include "service/session.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "base/check.h"
 #include "mesh/boundary_surface.h"
 #include "sim/tool_reaction.h"
 
@@ -56,6 +56,7 @@ absl::StatusOr<std::unique_ptr<Session>> Session::Create(SessionSetup setup,
   if (session->levels_.empty()) {
     session->levels_ = {kerf::v1::SURFACE, kerf::v1::VOLUME, kerf::v1::FORCES};
   }
+  setup.scene.blade_limits = options.blade_limits;  // the cutter refuses what SubmitPose does
   absl::StatusOr<std::unique_ptr<sim::Simulation>> simulation =
       sim::Simulation::Create(std::move(setup.scene));
   if (!simulation.ok()) return simulation.status();
@@ -190,7 +191,12 @@ absl::StatusOr<std::shared_ptr<Subscription>> Session::BeginCut(
       std::move(on_end)});
   cutter_view_->subscribers.push_back(subscription);
   last_submitted_.reset();
-  withdraw_when_done_ = false;
+  // The blade of a cutter that left without a word comes out before this cut's first pose
+  // (this cut's frames start from a keyframe; nobody waits for that withdrawal's frame).
+  if (withdraw_when_done_) {
+    WithdrawBlade(ticks_ + 1);
+    withdrawn_this_tick_ = false;
+  }
   on_withdrawn_ = nullptr;
   return subscription;
 }
@@ -241,7 +247,9 @@ void Session::Unsubscribe(const std::shared_ptr<Subscription>& subscription) {
   if (subscription->cutter) {
     if (cutter_view_ != nullptr && !cutter_view_->subscribers.empty() &&
         cutter_view_->subscribers.front() == subscription) {
+      // Gone without a word: the blade stops where the session has it and comes out.
       cutter_view_.reset();
+      poses_.clear();
       withdraw_when_done_ = true;
       on_withdrawn_ = nullptr;
     }
@@ -323,19 +331,48 @@ void Session::Run() {
   }
 }
 
-void Session::ApplyPose(const cut::BladePose& pose, double blade_time) {
+absl::Status Session::ApplyPose(const cut::BladePose& pose, double blade_time) {
   blade_time_ = blade_time;
-  if (!simulation_->ApplyBladePose(pose).ok()) return;  // refused: nothing changed
+  if (absl::Status s = simulation_->ApplyBladePose(pose); !s.ok()) return s;  // nothing changed
   before_last_applied_ = last_applied_;
   last_applied_ = pose;
   ++poses_applied_;
+  return absl::OkStatus();
 }
 
-void Session::Withdraw() {
-  (void)simulation_->WithdrawBlade();
+absl::Status Session::Withdraw() {
   withdrawn_this_tick_ = true;
   last_applied_.reset();
   before_last_applied_.reset();
+  return simulation_->WithdrawBlade();
+}
+
+void Session::WithdrawBlade(std::uint64_t tick) {
+  withdraw_when_done_ = false;
+  const absl::Status withdrawn = Withdraw();
+  if (journal_ != nullptr) {
+    kerf::v1::JournalRecord record;
+    record.mutable_withdrawal()->set_tick(tick);
+    unwritten_.push_back(std::move(record));
+  }
+  if (!withdrawn.ok()) {
+    EndCutWith(absl::Status(
+        withdrawn.code(), absl::StrCat("the blade could not be withdrawn: ", withdrawn.message())));
+  }
+}
+
+void Session::EndCutWith(const absl::Status& why) {
+  std::fprintf(stderr, "kerf-server: session %s: %s\n", id_.c_str(),
+               std::string(why.message()).c_str());
+  poses_.clear();
+  on_withdrawn_ = nullptr;
+  if (last_applied_) withdraw_when_done_ = true;  // (a failed withdrawal is not tried again)
+  if (cutter_view_ == nullptr) return;
+  for (const auto& subscriber : cutter_view_->subscribers) {
+    subscriber->queue->Close();
+    if (subscriber->on_end) subscriber->on_end(why);
+  }
+  cutter_view_.reset();
 }
 
 void Session::ApplyRecordedEvents(std::uint64_t tick) {
@@ -344,21 +381,40 @@ void Session::ApplyRecordedEvents(std::uint64_t tick) {
     if (record.has_pose()) {
       if (record.pose().tick() > tick) return;
       const absl::StatusOr<cut::BladePose> pose = cut::FromProto(record.pose().pose());
-      assert(pose.ok());  // checked by RecordedSessionOf
-      ApplyPose(*pose, record.pose().blade_time());
+      KERF_CHECK(pose.ok());  // checked by RecordedSessionOf
+      // Recorded once applied, it applies again (a replay is deterministic). Should it not
+      // (a journal of a server whose cutter differs), the restore goes on without it and says
+      // so.
+      if (absl::Status s = ApplyPose(*pose, record.pose().blade_time()); !s.ok()) {
+        ReportReplayFailure(record.pose().tick(), s);
+      }
     } else {
       if (record.withdrawal().tick() > tick) return;
-      Withdraw();
+      if (absl::Status s = Withdraw(); !s.ok()) ReportReplayFailure(record.withdrawal().tick(), s);
     }
     recorded_.pop_front();
+    // The recorded cutter is gone (its server stopped): a blade it left in comes out, as that
+    // of a cutter gone without a word does, and the next cut starts afresh.
+    if (recorded_.empty() && last_applied_) withdraw_when_done_ = true;
   }
 }
 
+void Session::ReportReplayFailure(std::uint64_t tick, const absl::Status& status) const {
+  std::fprintf(
+      stderr, "kerf-server: session %s: the event recorded at tick %llu failed again: %s\n",
+      id_.c_str(), static_cast<unsigned long long>(tick), std::string(status.message()).c_str());
+}
+
 void Session::ApplyDuePoses(std::uint64_t tick, double until) {
+  // A pose the cutter refuses ends the cut (EndCutWith empties the queue).
   const auto apply = [&](const cut::BladePose& pose, double blade_time) {
-    const std::uint64_t applied = poses_applied_;
-    ApplyPose(pose, blade_time);
-    if (journal_ == nullptr || poses_applied_ == applied) return;
+    if (absl::Status s = ApplyPose(pose, blade_time); !s.ok()) {
+      EndCutWith(absl::Status(
+          s.code(), absl::StrCat("the pose at ", blade_time, " s was not applied: ", s.message(),
+                                 "; the cut is ended and the blade withdrawn")));
+      return;
+    }
+    if (journal_ == nullptr) return;
     kerf::v1::JournalRecord record;
     record.mutable_pose()->set_tick(tick);
     *record.mutable_pose()->mutable_pose() = cut::ToProto(pose);
@@ -366,21 +422,14 @@ void Session::ApplyDuePoses(std::uint64_t tick, double until) {
     unwritten_.push_back(std::move(record));
   };
   while (!poses_.empty() && poses_.front().time <= until) {
-    apply(poses_.front(), poses_.front().time - pose_time_offset_);
+    const cut::BladePose pose = poses_.front();
     poses_.pop_front();
+    apply(pose, pose.time - pose_time_offset_);
   }
   if (!poses_.empty() && last_applied_ && last_applied_->time < until) {
     apply(cut::InterpolatePose(*last_applied_, poses_.front(), until), blade_time_);  // slow poses
   }
-  if (poses_.empty() && withdraw_when_done_) {
-    Withdraw();
-    withdraw_when_done_ = false;
-    if (journal_ != nullptr) {
-      kerf::v1::JournalRecord record;
-      record.mutable_withdrawal()->set_tick(tick);
-      unwritten_.push_back(std::move(record));
-    }
-  }
+  if (poses_.empty() && withdraw_when_done_) WithdrawBlade(tick);
 }
 
 void Session::WriteJournal() {

@@ -149,9 +149,16 @@ class Session {
   void Tick() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   void ApplyRecordedEvents(std::uint64_t tick) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   void ApplyDuePoses(std::uint64_t tick, double until) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
-  void ApplyPose(const cut::BladePose& pose, double blade_time)
+  // The simulation's refusal, if it refuses (then nothing changed).
+  absl::Status ApplyPose(const cut::BladePose& pose, double blade_time)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
-  void Withdraw() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  absl::Status Withdraw() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  // Withdraws the blade at `tick` and journals it; a failure ends the cut (EndCutWith).
+  void WithdrawBlade(std::uint64_t tick) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  // Ends the cut with `why` (logged, and the cutter's stream ended with it): its queued poses
+  // are dropped and the blade withdrawn at the next tick. What it cut stays cut.
+  void EndCutWith(const absl::Status& why) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void ReportReplayFailure(std::uint64_t tick, const absl::Status& status) const;
   void WriteJournal() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   void Publish(View& view, std::uint64_t sequence, const TickReport& report)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);

@@ -3,11 +3,11 @@
 #include <sys/random.h>
 
 #include <array>
-#include <cassert>
 #include <cstdint>
 
 #include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
+#include "base/check.h"
 #include "service/sha256.h"
 
 namespace kerf::service {
@@ -29,7 +29,7 @@ std::string RandomToken() {
 
 std::pair<SessionTokens, IssuedTokens> SessionTokens::Generate() {
   IssuedTokens issued{RandomToken(), RandomToken()};
-  assert(issued.cutter != issued.observer);
+  KERF_CHECK(issued.cutter != issued.observer);
   return {SessionTokens(Sha256(issued.cutter), Sha256(issued.observer)), std::move(issued)};
 }
 

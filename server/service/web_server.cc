@@ -292,7 +292,11 @@ Response WebServer::Impl::Handle(const Request& request) const {
     std::string json;
     google::protobuf::util::JsonPrintOptions options;
     options.preserve_proto_field_names = true;
-    (void)google::protobuf::util::MessageToJsonString(list, &json, options);
+    if (const auto status = google::protobuf::util::MessageToJsonString(list, &json, options);
+        !status.ok()) {
+      return TextResponse(request, http::status::internal_server_error,
+                          absl::StrCat("the session list: ", status.ToString(), "\n"));
+    }
     return TextResponse(request, http::status::ok, json, "application/json");
   }
   if (web_root.empty() || absl::StrContains(path, "..") || path.empty() || path[0] != '/') {

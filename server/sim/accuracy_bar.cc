@@ -1,12 +1,12 @@
 #include "sim/accuracy_bar.h"
 
 #include <Eigen/Geometry>
-#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 
 #include "absl/strings/str_cat.h"
+#include "base/check.h"
 #include "mesh/box_lattice.h"
 #include "sim/simulation.h"
 
@@ -141,7 +141,7 @@ absl::StatusOr<BarSettleResult> SettleBar(BarLoad load, int n, kerf::v1::Integra
   const std::vector<Eigen::Vector3d>& u = sim.state().displacement;
   if (const std::optional<Eigen::Vector3d> probe = ProbePoint(load); probe.has_value()) {
     const std::optional<mesh::VertexId> v = VertexAt(sim.mesh(), *probe);
-    assert(v.has_value());  // n is even
+    KERF_CHECK(v.has_value());  // n is even
     result.quantity = u[mesh::Index(*v)];
   } else {
     // The force holding the face: what the body resists its displacement with there.

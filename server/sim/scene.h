@@ -32,6 +32,9 @@ struct Scene {
   double snap_fraction = cut::kDefaultCrackSnapFraction;          // see kerf.v1.Cutting
   fem::ElasticOptions elastic;                                    // see kerf.v1.Elasticity
   std::optional<fem::SleepOptions> sleep;  // set: vertices at rest sleep (kerf.v1.Sleeping)
+  // What the cutter refuses as a blade (too long, a teleport, too fast); a session sets the
+  // limits it checks poses against, so the two agree.
+  cut::BladeLimits blade_limits;
 };
 
 // The law a scene's elasticity names (MODEL_UNSPECIFIED: linear), and back.

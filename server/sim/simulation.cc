@@ -63,7 +63,7 @@ absl::Status Simulation::ApplyBladePose(const cut::BladePose& pose) {
   if (cutter_ == nullptr) {
     // The spatial index's cells are about an edge long.
     absl::StatusOr<cut::CrackCutter> cutter = cut::CrackCutter::Create(
-        &scene_.mesh, mesh::MeanEdgeLength(scene_.mesh), {},
+        &scene_.mesh, mesh::MeanEdgeLength(scene_.mesh), scene_.blade_limits,
         {.mode = scene_.cut_mode == kerf::v1::Cutting::DEFERRED ? cut::CutMode::kDeferred
                                                                 : cut::CutMode::kProgressive,
          .snap_fraction = scene_.snap_fraction,

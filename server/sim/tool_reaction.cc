@@ -2,9 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <cassert>
 #include <vector>
 
+#include "base/check.h"
 #include "geometry/tet_measures.h"
 
 namespace kerf::sim {
@@ -28,7 +28,7 @@ ToolReaction MeasureToolReaction(const Simulation& simulation,
   const std::vector<mesh::TetVertices> holding = cutter->TetsHoldingBlade(pose);
   if (holding.empty()) return reaction;
   const mesh::TetMesh& m = simulation.mesh();
-  assert(elastic_forces.size() >= m.vertex_index_bound());
+  KERF_CHECK(elastic_forces.size() >= m.vertex_index_bound());
   std::vector<mesh::VertexId> vertices;
   for (const mesh::TetVertices& corners : holding) {
     for (const mesh::VertexId v : corners) vertices.push_back(v);

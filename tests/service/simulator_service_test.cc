@@ -320,6 +320,18 @@ kerf::v1::BladePose Pose(double time, double y) {
   return pose;
 }
 
+// The session as ListSessions shows it.
+kerf::v1::SessionInfo Listed(Server& server, const std::string& id) {
+  kerf::v1::ListSessionsResponse sessions;
+  grpc::ClientContext context;
+  EXPECT_TRUE(server.stub().ListSessions(&context, {}, &sessions).ok());
+  for (const kerf::v1::SessionInfo& s : sessions.sessions()) {
+    if (s.session_id() == id) return s;
+  }
+  ADD_FAILURE() << "no session " << id;
+  return {};
+}
+
 // Streams a straight cut across the bar at x = 23.7 mm, 2 mm per pose, 100 poses per second.
 // Sends 16 poses 10 ms apart (slower than the 1 kHz ticks, so the session interpolates).
 // `largest_force`, if given, receives the largest tool force of the frames (N), and
@@ -706,6 +718,37 @@ TEST(SimulatorService, ACutterThatDisconnectsMidCutLeavesAWorkingSession) {
   int frames = 0;
   EXPECT_TRUE(CutAcross(server.stub(), info.session_id(), &frames).ok());
   ExpectSeesSnapshot(observer, Snapshot(server, info.session_id(), kerf::v1::VOLUME));
+}
+
+// A cutter that vanishes with poses queued ahead of the session: they are dropped with it, its
+// blade comes out, and the next cutter's blade cuts from its own first pose (the next cut's poses
+// were once queued behind the vanished one's and refused by the cutter, without a word).
+TEST(SimulatorService, TheNextCutterCutsThoughTheLastLeftPosesQueued) {
+  Server server;
+  const kerf::v1::SessionInfo info = server.CreateBarSession();
+  {
+    grpc::ClientContext context;
+    auto stream = server.stub().Cut(&context);
+    stream->Write(CutStart(info.session_id(), TokensOf(info.session_id()).cutter));
+    for (int k = 0; k < 150; ++k) {  // 1.5 s of a blade held still beside the bar
+      kerf::v1::CutRequest request;
+      *request.mutable_pose() = Pose(0.01 * k, -0.005);
+      stream->Write(request);
+    }
+    Frame frame;
+    ASSERT_TRUE(stream->Read(&frame));  // the session took the cut
+    context.TryCancel();
+    while (stream->Read(&frame)) {
+    }
+  }
+  for (int wait = 0; wait < 100; ++wait) {
+    if (!Listed(server, info.session_id()).cutting()) break;
+    absl::SleepFor(absl::Milliseconds(10));
+  }
+  int frames = 0;
+  const grpc::Status cut = CutAcross(server.stub(), info.session_id(), &frames);
+  ASSERT_TRUE(cut.ok()) << cut.error_message();
+  EXPECT_GT(Listed(server, info.session_id()).tets(), info.tets()) << "the second cut cut nothing";
 }
 
 TEST(SimulatorService, OneCutterAtATime) {

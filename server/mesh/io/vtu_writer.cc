@@ -1,9 +1,9 @@
 #include "mesh/io/vtu_writer.h"
 
-#include <cassert>
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
+#include "base/check.h"
 #include "mesh/io/base64.h"
 #include "mesh/io/tet_mesh_data.h"
 
@@ -33,11 +33,11 @@ void AppendArray(std::string* out, absl::string_view name, int components,
 }
 
 void AppendExtraArrays(std::string* out, const std::vector<VtuDataArray>& arrays,
-                       [[maybe_unused]] std::size_t tuples) {
+                       std::size_t tuples) {
   for (const VtuDataArray& array : arrays) {
     std::visit(
         [&](const auto& values) {
-          assert(values.size() == tuples * static_cast<std::size_t>(array.components));
+          KERF_CHECK(values.size() == tuples * static_cast<std::size_t>(array.components));
           AppendArray(out, array.name, array.components, values);
         },
         array.values);
