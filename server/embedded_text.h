@@ -1,5 +1,5 @@
 // Text files compiled into kerf (see kerf_embed_text in server/CMakeLists.txt): the scenes of
-// sim/scenes/ and the blade paths of cut/paths/, by file name without extension.
+// sim/scenes/ and the blade paths of lab/paths/, by file name without extension.
 #pragma once
 
 #include <cstddef>

@@ -15,6 +15,7 @@
 #include "cut/crack_cutter.h"
 #include "geometry/tet_measures.h"
 #include "lab/crack_fidelity.h"
+#include "lab/standard_scenes.h"
 #include "mesh/connected_components.h"
 #include "mesh/cut_mesh_check.h"
 #include "mesh/cut_surface.h"
@@ -23,8 +24,8 @@
 #include "mesh/io/vtu_writer.h"
 #include "mesh/mesh_quality.h"
 #include "mesh/mesh_validation.h"
+#include "sim/blade_messages.h"
 #include "sim/simulation.h"
-#include "sim/standard_scenes.h"
 
 namespace kerf::cli {
 namespace {
@@ -61,7 +62,7 @@ std::string CutMeshVtu(const mesh::TetMesh& m, const cut::CrackCutter& cutter,
 absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name) {
   const bool file = absl::EndsWith(name, ".textproto");
   absl::StatusOr<sim::Scene> scene =
-      file ? sim::LoadScene(name) : sim::StandardScene(name, /*liver_mesh_path=*/"");
+      file ? sim::LoadScene(name) : lab::StandardScene(name, /*liver_mesh_path=*/"");
   if (!file && absl::IsNotFound(scene.status())) return mesh::ReadMeshFile(name);
   if (!scene.ok()) return scene.status();
   return MeshOfScene(*std::move(scene));
@@ -402,7 +403,7 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   const absl::string_view path_file = (**path_arg)[0];
   absl::StatusOr<std::string> path_text = mesh::ReadTextFile(path_file);
   if (!path_text.ok()) return path_text.status();
-  absl::StatusOr<std::vector<cut::BladePose>> poses = cut::ParseBladePathJson(
+  absl::StatusOr<std::vector<cut::BladePose>> poses = sim::ParseBladePathJson(
       *path_text, path_file,
       LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()));
   if (!poses.ok()) return poses.status();

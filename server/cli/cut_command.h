@@ -57,7 +57,7 @@ absl::StatusOr<kerf::v1::CutReport> CutAlongPath(mesh::TetMesh* mesh,
 // The blade limits for a mesh of this size (bounding-box diagonal, in its length unit).
 cut::BladeLimits LimitsForMeshSize(double diagonal);
 
-// The mesh of a scene (a standard one by name, see sim::StandardScene, or a .textproto file) in
+// The mesh of a scene (a standard one by name, see lab::StandardScene, or a .textproto file) in
 // its initial state, or of a mesh file.
 absl::StatusOr<mesh::TetMesh> LoadMeshOrScene(absl::string_view name);
 

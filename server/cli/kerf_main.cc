@@ -7,7 +7,7 @@
 #include "absl/strings/string_view.h"
 #include "cli/chart_command.h"
 #include "cli/cut_command.h"
-#include "cli/experiment_command.h"
+#include "cli/experiments/experiment_command.h"
 #include "cli/mesh_commands.h"
 #include "cli/path_command.h"
 #include "cli/replay_command.h"

@@ -7,9 +7,6 @@
 #include <vector>
 
 #include "absl/status/status.h"
-#include "absl/status/statusor.h"
-#include "absl/strings/string_view.h"
-#include "kerf/v1/blade.pb.h"
 
 namespace kerf::cut {
 
@@ -35,16 +32,5 @@ absl::Status ValidatePose(const BladePose& pose, const BladePose* previous,
 // The pose at `time` on the straight motion from a to b (a.time < b.time): tip and heel
 // linear in time.
 BladePose InterpolatePose(const BladePose& a, const BladePose& b, double time);
-
-// From the message; INVALID_ARGUMENT if tip or heel is not three numbers.
-absl::StatusOr<BladePose> FromProto(const kerf::v1::BladePose& pose);
-// The message of a pose (FromProto's inverse, exactly).
-kerf::v1::BladePose ToProto(const BladePose& pose);
-
-// A whole path from its JSON form, every pose validated against the one before.
-// INVALID_ARGUMENT "source: ..." naming the pose for a bad one.
-absl::StatusOr<std::vector<BladePose>> ParseBladePathJson(absl::string_view json,
-                                                          absl::string_view source,
-                                                          const BladeLimits& limits);
 
 }  // namespace kerf::cut

@@ -196,15 +196,9 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   const double smallest_volume = SmallestRestVolume(*mesh_, pieces);
   const bool cone = split->kind == CrackSplitKind::kCone;
   const bool opened = !openings.empty() || !to_open.empty();
-  open_[unit] = {corners,
-                 source,
-                 std::move(pieces),
-                 std::move(crack_faces),
-                 std::move(openings),
-                 std::move(points),
-                 cone,
-                 opened,
-                 smallest_volume};
+  open_[unit] = {
+      corners, source, std::move(pieces), std::move(crack_faces), std::move(openings), points,
+      cone,    opened, smallest_volume};
   return to_part;
 }
 

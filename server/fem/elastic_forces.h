@@ -35,7 +35,7 @@ struct ElasticOptions {
 class ElasticForces {
  public:
   // The model must outlive this object and be synced with its mesh before each Update.
-  ElasticForces(const TensorMassModel& model, ElasticOptions options = {});
+  explicit ElasticForces(const TensorMassModel& model, ElasticOptions options = {});
 
   // Takes the rotation of every live tet from displacement u (corotational, or auto over its
   // threshold) and measures the largest strain (auto). Call before the forces of a step and

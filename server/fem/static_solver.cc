@@ -18,7 +18,8 @@ absl::StatusOr<std::vector<Eigen::Vector3d>> SolveStaticEquilibrium(const Tensor
     }
   }
   for (const PrescribedDisplacement& p : bc.prescribed) {
-    const std::size_t dof = 3 * mesh::Index(p.vertex) + static_cast<std::size_t>(p.component);
+    const std::size_t dof =
+        3 * static_cast<std::size_t>(mesh::Index(p.vertex)) + static_cast<std::size_t>(p.component);
     free_index[dof] = kPrescribed;
     prescribed_value[dof] = p.value;
   }

@@ -67,19 +67,20 @@ absl::StatusOr<TetMesh> MakeBoxLattice(const BoxLatticeSpec& spec) {
   }
   const Eigen::Vector3d step(size[0] / cells[0], size[1] / cells[1], size[2] / cells[2]);
   const int nx = cells[0] + 1, ny = cells[1] + 1, nz = cells[2] + 1;
+  const auto point_index = [&](int i, int j, int k) {
+    const auto size_of = [](int n) { return static_cast<std::size_t>(n); };
+    return size_of(i) + size_of(nx) * (size_of(j) + size_of(ny) * size_of(k));
+  };
 
   TetMesh mesh;
   std::vector<VertexId> vertex_of_point(static_cast<std::size_t>(nx) * ny * nz);
   for (const auto& [i, j, k] : ZOrder(nx, ny, nz)) {
     // The last layer sits exactly on the box's far face.
-    vertex_of_point[static_cast<std::size_t>(i + nx * (j + ny * k))] =
-        mesh.AddVertex(Eigen::Vector3d(i == cells[0] ? size[0] : i * step[0],
-                                       j == cells[1] ? size[1] : j * step[1],
-                                       k == cells[2] ? size[2] : k * step[2]));
+    vertex_of_point[point_index(i, j, k)] = mesh.AddVertex(Eigen::Vector3d(
+        i == cells[0] ? size[0] : i * step[0], j == cells[1] ? size[1] : j * step[1],
+        k == cells[2] ? size[2] : k * step[2]));
   }
-  auto vertex_at = [&](int i, int j, int k) {
-    return vertex_of_point[static_cast<std::size_t>(i + nx * (j + ny * k))];
-  };
+  auto vertex_at = [&](int i, int j, int k) { return vertex_of_point[point_index(i, j, k)]; };
 
   // The six paths from corner (0,0,0) to (1,1,1) along cube edges, one per axis order; each
   // path's four corners form a tet. Odd permutations give negative orientation.

@@ -4,6 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "cut/blade.h"
+#include "sim/blade_messages.h"
 
 namespace kerf::service {
 namespace {
@@ -14,7 +15,7 @@ std::string Unusable(const kerf::v1::JournalRecord& record, std::uint64_t last_t
   switch (record.event_case()) {
     case kerf::v1::JournalRecord::kPose: {
       tick = record.pose().tick();
-      const absl::StatusOr<cut::BladePose> pose = cut::FromProto(record.pose().pose());
+      const absl::StatusOr<cut::BladePose> pose = sim::BladePoseFromProto(record.pose().pose());
       if (!pose.ok()) return std::string(pose.status().message());
       if (!std::isfinite(pose->time) || !pose->tip.allFinite() || !pose->heel.allFinite()) {
         return "a pose that is not finite";

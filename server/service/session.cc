@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "base/check.h"
 #include "mesh/boundary_surface.h"
+#include "sim/blade_messages.h"
 #include "sim/tool_reaction.h"
 
 namespace kerf::service {
@@ -202,7 +203,7 @@ absl::StatusOr<std::shared_ptr<Subscription>> Session::BeginCut(
 }
 
 absl::Status Session::SubmitPose(const kerf::v1::BladePose& message) {
-  absl::StatusOr<cut::BladePose> pose = cut::FromProto(message);
+  absl::StatusOr<cut::BladePose> pose = sim::BladePoseFromProto(message);
   if (!pose.ok()) return pose.status();
   absl::MutexLock lock(&mutex_);
   if (cutter_view_ == nullptr) {
@@ -380,7 +381,7 @@ void Session::ApplyRecordedEvents(std::uint64_t tick) {
     const kerf::v1::JournalRecord& record = recorded_.front();
     if (record.has_pose()) {
       if (record.pose().tick() > tick) return;
-      const absl::StatusOr<cut::BladePose> pose = cut::FromProto(record.pose().pose());
+      const absl::StatusOr<cut::BladePose> pose = sim::BladePoseFromProto(record.pose().pose());
       KERF_CHECK(pose.ok());  // checked by RecordedSessionOf
       // Recorded once applied, it applies again (a replay is deterministic). Should it not
       // (a journal of a server whose cutter differs), the restore goes on without it and says
@@ -417,7 +418,7 @@ void Session::ApplyDuePoses(std::uint64_t tick, double until) {
     if (journal_ == nullptr) return;
     kerf::v1::JournalRecord record;
     record.mutable_pose()->set_tick(tick);
-    *record.mutable_pose()->mutable_pose() = cut::ToProto(pose);
+    *record.mutable_pose()->mutable_pose() = sim::BladePoseToProto(pose);
     record.mutable_pose()->set_blade_time(blade_time);
     unwritten_.push_back(std::move(record));
   };

@@ -276,8 +276,9 @@ grpc::ServerUnaryReactor* SimulatorService::CloseSession(
       FindAuthorized(*registry_, request->session_id(), Role::kCutter, request->token());
   if (!session.ok()) return FinishUnary(context, session.status());
   absl::StatusOr<kerf::v1::SessionInfo> closed = registry_->Close(request->session_id());
-  if (closed.ok()) *response->mutable_session() = *std::move(closed);
-  return FinishUnary(context, closed.status());
+  if (!closed.ok()) return FinishUnary(context, closed.status());
+  *response->mutable_session() = *std::move(closed);
+  return FinishUnary(context, absl::OkStatus());
 }
 
 grpc::ServerUnaryReactor* SimulatorService::GetSnapshot(grpc::CallbackServerContext* context,
@@ -290,8 +291,9 @@ grpc::ServerUnaryReactor* SimulatorService::GetSnapshot(grpc::CallbackServerCont
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   (*session)->Snapshot(request->level(), request->sequence(),
                        [reactor, response](absl::StatusOr<kerf::v1::Frame> frame) {
-                         if (frame.ok()) *response = *std::move(frame);
-                         reactor->Finish(ToGrpcStatus(frame.status()));
+                         if (!frame.ok()) return reactor->Finish(ToGrpcStatus(frame.status()));
+                         *response = *std::move(frame);
+                         reactor->Finish(grpc::Status::OK);
                        });
   return reactor;
 }

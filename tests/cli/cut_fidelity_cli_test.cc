@@ -38,7 +38,7 @@ TEST(KerfCutFidelity, CutReportsCoverageOfTheSweptSurface) {
     return report;
   };
   const kerf::v1::CutReport straight =
-      cut(absl::StrCat(KERF_SOURCE_DIR, "/server/cut/paths/lattice-straight.json"), "");
+      cut(absl::StrCat(KERF_SOURCE_DIR, "/server/lab/paths/lattice-straight.json"), "");
   EXPECT_EQ(straight.check(), "end");
   EXPECT_TRUE(straight.fidelity_measured());
   EXPECT_EQ(straight.crossed_tets(), 96u);  // a cross-section of the lattice

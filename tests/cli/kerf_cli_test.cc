@@ -90,7 +90,7 @@ TEST(KerfCli, CutAcrossTheSharedLiverPartsItInTwo) {
   if (path.empty()) GTEST_SKIP() << "shared/meshes is not beside the repo";
   for (const absl::string_view mode : {"", " --deferred"}) {
     const CliResult run = Kerf(absl::StrCat("cut ", path, " --path ", KERF_SOURCE_DIR,
-                                            "/server/cut/paths/liver-across.json --out ",
+                                            "/server/lab/paths/liver-across.json --out ",
                                             ::testing::TempDir(), "/liver-cut.vtu --json", mode));
     ASSERT_EQ(run.exit_code, 0) << run.output;
     kerf::v1::CutReport report;
@@ -455,12 +455,12 @@ TEST(KerfCli, LiveCutExperimentShowsExplicitBlowUpsAndImplicitStability) {
   EXPECT_EQ(experiment.rows(0).solve_iterations_max(), 0u);  // explicit: no solve
 }
 
-// The report of `kerf cut lattice-tension` along server/cut/paths/`path`.json with `extra` flags.
+// The report of `kerf cut lattice-tension` along server/lab/paths/`path`.json with `extra` flags.
 kerf::v1::CutReport CutLattice(absl::string_view path, absl::string_view extra,
                                absl::string_view scene = "lattice-tension") {
   kerf::v1::CutReport report;
   const CliResult run = Kerf(
-      absl::StrCat("cut ", scene, " --path ", KERF_SOURCE_DIR, "/server/cut/paths/", path,
+      absl::StrCat("cut ", scene, " --path ", KERF_SOURCE_DIR, "/server/lab/paths/", path,
                    ".json --out ", ::testing::TempDir(), "/cut.vtu --json --check every", extra));
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(run.output, &report).ok());
@@ -483,7 +483,7 @@ TEST(KerfCli, CutTakesAHeightGuardThatChangesNoCut) {
   }
   const CliResult refused =
       Kerf(absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR,
-                        "/server/cut/paths/lattice-straight.json --out ", ::testing::TempDir(),
+                        "/server/lab/paths/lattice-straight.json --out ", ::testing::TempDir(),
                         "/held.vtu --min-temporary-height 1"));
   EXPECT_EQ(refused.exit_code, 1);
   EXPECT_THAT(refused.output,
@@ -518,7 +518,7 @@ TEST(KerfCli, CutSnapsThroughVertices) {
   EXPECT_EQ(snapped.invalid_poses(), 0u);
   EXPECT_EQ(progressive.invalid_poses(), 0u);
   const CliResult bad = Kerf(absl::StrCat("cut lattice-tension --path ", KERF_SOURCE_DIR,
-                                          "/server/cut/paths/lattice-straight.json --out ",
+                                          "/server/lab/paths/lattice-straight.json --out ",
                                           ::testing::TempDir(), "/snap.vtu --snap 0.5"));
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("the snap fraction must be in [0, 0.5), got 0.5"), std::string::npos)

@@ -37,7 +37,7 @@ TEST(KerfHaptic, CompletesAScriptedCutAndItsForceLoopHoldsItsRateWhileFramesAreD
   const std::string csv = ::testing::TempDir() + "/kerf-haptic.csv";
   const kerf::testing::CommandResult run = kerf::testing::RunCommand(absl::StrCat(
       KERF_HAPTIC_BINARY, " --server=127.0.0.1:", server.port(), " --path=", KERF_SOURCE_DIR,
-      "/server/cut/paths/lattice-straight.json --device=simulated --slowdown=8 "
+      "/server/lab/paths/lattice-straight.json --device=simulated --slowdown=8 "
       "--frame_rate_hz=100 --frame_delay_ms=40 --csv=",
       csv, " 2>&1"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
@@ -78,7 +78,7 @@ TEST(KerfHaptic, ReconnectsWhenTheServerRestartsMidCut) {
       popen(absl::StrCat(KERF_HAPTIC_BINARY, " --server=127.0.0.1:", port,
                          " --session_id=", created.session().session_id(),
                          " --token=", created.cutter_token(), " --path=", KERF_SOURCE_DIR,
-                         "/server/cut/paths/lattice-straight.json --device=path --slowdown=16 2>&1")
+                         "/server/lab/paths/lattice-straight.json --device=path --slowdown=16 2>&1")
                 .c_str(),
             "r");
   ASSERT_NE(haptic, nullptr);

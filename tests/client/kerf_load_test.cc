@@ -30,7 +30,7 @@ std::string WriteScenario(const std::string& name, const std::string& extra) {
   const std::string file = absl::StrCat(::testing::TempDir(), "/kerf-load-", name, ".textproto");
   std::ofstream(file) << "scene_name: \"lattice-tension\" levels: [SURFACE, FORCES]\n"
                       << "path: \"" << KERF_SOURCE_DIR
-                      << "/server/cut/paths/lattice-straight.json\"\n"
+                      << "/server/lab/paths/lattice-straight.json\"\n"
                       << extra;
   return file;
 }
@@ -75,7 +75,7 @@ TEST_F(KerfLoadTest, BadArgumentsExitTwoWithAMessage) {
   EXPECT_NE(run.output.find("cannot read blade path '/no/path.json'"), std::string::npos)
       << run.output;
   run = Load(absl::StrCat("--path=", KERF_SOURCE_DIR,
-                          "/server/cut/paths/lattice-straight.json --sessions=100 2>&1"));
+                          "/server/lab/paths/lattice-straight.json --sessions=100 2>&1"));
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.output.find("sessions must be 1 to 64"), std::string::npos) << run.output;
 }

@@ -5,8 +5,8 @@
 #include <set>
 
 #include "cut/crack_cutter.h"
-#include "cut/progressive_case_paths.h"
 #include "geometry/tet_measures.h"
+#include "lab/progressive_case_paths.h"
 #include "mesh/face_tiling.h"
 #include "mesh/mesh_validation.h"
 #include "support/unit_tet.h"
@@ -71,8 +71,8 @@ TEST(CrackCutterBlade, ThinPiecesOnTheBladeAreSoftenedWhileItIsThere) {
 // (cut with the least snapping: the paths were found for crossings taken where they are).
 TEST(CrackCutterBlade, EveryTableCaseIsReached) {
   std::set<int> reached;
-  for (const ScriptedPath& path : ProgressiveCasePaths()) {
-    const TetMesh lattice = ScriptedPathLattice();
+  for (const lab::ScriptedPath& path : lab::ProgressiveCasePaths()) {
+    const TetMesh lattice = lab::ScriptedPathLattice();
     TetMesh m = lattice;
     CrackCutter cutter = *CrackCutter::Create(&m, 0.01, {}, {.snap_fraction = 0});
     for (std::size_t i = 0; i < path.poses.size(); ++i) {

@@ -7,6 +7,7 @@
 
 #include "mesh/box_lattice.h"
 #include "mesh/mesh_quality.h"
+#include "sim/blade_messages.h"
 
 namespace kerf::lab {
 namespace {
@@ -48,7 +49,7 @@ TEST(HandPaths, JsonReadsBackExactly) {
   const mesh::TetMesh m = Lattice();
   const std::vector<BladePose> poses = MakeHandPath(m, PathFamily::kHand, 4);
   const absl::StatusOr<std::vector<BladePose>> read =
-      cut::ParseBladePathJson(FormatBladePathJson(poses), "made", Limits(m));
+      sim::ParseBladePathJson(FormatBladePathJson(poses), "made", Limits(m));
   ASSERT_TRUE(read.ok()) << read.status();
   ASSERT_EQ(read->size(), poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {

@@ -26,6 +26,7 @@
 #include "google/protobuf/util/json_util.h"
 #include "kerf/v1/replay_report.pb.h"
 #include "kerf/v1/simulator.grpc.pb.h"
+#include "sim/blade_messages.h"
 #include "support/server_process.h"
 
 namespace kerf::service {
@@ -90,7 +91,7 @@ grpc::Status SnapshotAt(kerf::v1::Simulator::Stub& stub, const std::string& sess
 // Cuts along the embedded straight path through the 4x6x4 lattice, to the end of the cut.
 void CutStraightThrough(kerf::v1::Simulator::Stub& stub, const std::string& session,
                         const std::string& cutter_token) {
-  const absl::StatusOr<std::vector<cut::BladePose>> path = cut::ParseBladePathJson(
+  const absl::StatusOr<std::vector<cut::BladePose>> path = sim::ParseBladePathJson(
       *FindEmbeddedText(EmbeddedBladePaths(), "lattice-straight"), "lattice-straight", {});
   ASSERT_TRUE(path.ok()) << path.status();
   grpc::ClientContext context;
@@ -102,7 +103,7 @@ void CutStraightThrough(kerf::v1::Simulator::Stub& stub, const std::string& sess
   ASSERT_TRUE(stream->Write(start));
   for (const cut::BladePose& pose : *path) {  // 0.25 s of poses: within the allowed lead
     kerf::v1::CutRequest request;
-    *request.mutable_pose() = cut::ToProto(pose);
+    *request.mutable_pose() = sim::BladePoseToProto(pose);
     ASSERT_TRUE(stream->Write(request));
   }
   stream->WritesDone();

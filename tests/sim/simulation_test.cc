@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "sim/accuracy_bar.h"
+#include "lab/accuracy_bar.h"
 #include "sim/scene.h"
 #include "support/status_message.h"
 
@@ -16,8 +16,9 @@ using kerf::testing::StatusMessage;
 // A start near the answer: the given displacement at rest, held components at their values,
 // and a wrong one refused with nothing changed.
 TEST(Simulation, SetDisplacementStartsThereAtRestAndKeepsHeldValues) {
-  absl::StatusOr<Scene> scene = MakeBarScene(
-      BarLoad::kTension, 2, kerf::v1::Integration::IMPLICIT_EULER, fem::ElasticLaw::kLinear, 0);
+  absl::StatusOr<Scene> scene =
+      lab::MakeBarScene(lab::BarLoad::kTension, 2, kerf::v1::Integration::IMPLICIT_EULER,
+                        fem::ElasticLaw::kLinear, 0);
   ASSERT_TRUE(scene.ok()) << scene.status();
   absl::StatusOr<std::unique_ptr<Simulation>> sim = Simulation::Create(*std::move(scene));
   ASSERT_TRUE(sim.ok()) << sim.status();
@@ -35,7 +36,7 @@ TEST(Simulation, SetDisplacementStartsThereAtRestAndKeepsHeldValues) {
   for (std::uint32_t i = 0; i < n; ++i) {
     EXPECT_EQ((*sim)->state().velocity[i], Eigen::Vector3d::Zero());
     const Eigen::Vector3d& rest = (*sim)->mesh().rest_position(mesh::VertexId{i});
-    const std::optional<Eigen::Vector3d> held = HeldDisplacement(BarLoad::kTension, rest);
+    const std::optional<Eigen::Vector3d> held = lab::HeldDisplacement(lab::BarLoad::kTension, rest);
     const Eigen::Vector3d expected = held.value_or(Eigen::Vector3d(0, 0.001, 0));
     EXPECT_EQ((*sim)->state().displacement[i], expected) << i;
     EXPECT_EQ((*sim)->mesh().current_position(mesh::VertexId{i}), rest + expected) << i;

@@ -65,7 +65,7 @@ try {
   // A session whose tissue settles for 3 s (time for the pages to load; it still moves under
   // its load while it is cut), then a 4 s cut along the straight path. Its surface is counted
   // at once, before the cut, however slowly the pages load.
-  const cutter = start(haptic, [`--server=${grpc}`, '--path=../server/cut/paths/lattice-straight.json',
+  const cutter = start(haptic, [`--server=${grpc}`, '--path=../server/lab/paths/lattice-straight.json',
                                 '--device=path', '--slowdown=16', '--settle_seconds=3',
                                 '--keep_session']);
   const [, session, token] = await cutter.line(/^kerf-haptic: session (\S+), observer token (\S+)$/);

@@ -1,4 +1,4 @@
-#include "sim/live_cut.h"
+#include "lab/live_cut.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,7 +11,7 @@
 #include "mesh/mesh_validation.h"
 #include "sim/simulation.h"
 
-namespace kerf::sim {
+namespace kerf::lab {
 namespace {
 
 // The path's pose at time t (s, as written), linear between poses, held after the last.
@@ -41,16 +41,17 @@ double LargestSpeed(const fem::DynamicState& state) {
 
 }  // namespace
 
-absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
+absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(sim::Scene scene,
                                                 const std::vector<cut::BladePose>& path,
                                                 const LiveCutOptions& options) {
   if (scene.method == kerf::v1::Integration::STATIC) {
     return absl::FailedPreconditionError("a live cut needs a dynamic scene, not STATIC");
   }
   if (path.empty()) return absl::InvalidArgumentError("the blade path has no pose");
-  absl::StatusOr<std::unique_ptr<Simulation>> created = Simulation::Create(std::move(scene));
+  absl::StatusOr<std::unique_ptr<sim::Simulation>> created =
+      sim::Simulation::Create(std::move(scene));
   if (!created.ok()) return created.status();
-  Simulation& sim = **created;
+  sim::Simulation& sim = **created;
   double time = 0;
   std::vector<int> iterations;  // of the linear solves
   std::vector<int> sub_steps;
@@ -131,4 +132,4 @@ absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
   return row;
 }
 
-}  // namespace kerf::sim
+}  // namespace kerf::lab

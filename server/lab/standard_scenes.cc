@@ -1,4 +1,4 @@
-#include "sim/standard_scenes.h"
+#include "lab/standard_scenes.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -8,8 +8,9 @@
 #include "embedded_text.h"
 #include "geometry/tet_measures.h"
 #include "mesh/mesh_quality.h"
+#include "sim/blade_messages.h"
 
-namespace kerf::sim {
+namespace kerf::lab {
 namespace {
 
 // Smallest dihedral angle (degrees) of the tets around v.
@@ -26,8 +27,8 @@ double SmallestDihedralAround(const mesh::TetMesh& m, mesh::VertexId v) {
 
 }  // namespace
 
-absl::StatusOr<Scene> PoorQualityLatticeScene() {
-  absl::StatusOr<Scene> scene = LoadScene("lattice-tension");
+absl::StatusOr<sim::Scene> PoorQualityLatticeScene() {
+  absl::StatusOr<sim::Scene> scene = sim::LoadScene("lattice-tension");
   if (!scene.ok()) return scene.status();
   scene->name = "lattice-poor";
   mesh::TetMesh& m = scene->mesh;
@@ -52,8 +53,8 @@ absl::StatusOr<Scene> PoorQualityLatticeScene() {
   return scene;
 }
 
-absl::StatusOr<Scene> LiverScene(absl::string_view mesh_path) {
-  absl::StatusOr<kerf::v1::Scene> spec = ParseSceneText(
+absl::StatusOr<sim::Scene> LiverScene(absl::string_view mesh_path) {
+  absl::StatusOr<kerf::v1::Scene> spec = sim::ParseSceneText(
       absl::StrCat("name: \"liver\"\n"
                    "mesh { file: \"",
                    mesh_path,
@@ -65,7 +66,7 @@ absl::StatusOr<Scene> LiverScene(absl::string_view mesh_path) {
                    "gravity { z: -9.81 }\n"),
       "liver");
   if (!spec.ok()) return spec.status();
-  absl::StatusOr<Scene> scene = BuildScene(*spec, ".");
+  absl::StatusOr<sim::Scene> scene = sim::BuildScene(*spec, ".");
   if (!scene.ok()) return scene.status();
   for (const mesh::VertexId v : scene->mesh.vertices()) {
     const Eigen::Vector3d x = kLiverUnit * scene->mesh.rest_position(v);
@@ -74,7 +75,8 @@ absl::StatusOr<Scene> LiverScene(absl::string_view mesh_path) {
   return scene;
 }
 
-absl::StatusOr<Scene> StandardScene(absl::string_view name, absl::string_view liver_mesh_path) {
+absl::StatusOr<sim::Scene> StandardScene(absl::string_view name,
+                                         absl::string_view liver_mesh_path) {
   if (name == "lattice-poor") return PoorQualityLatticeScene();
   if (name == "liver") {
     if (liver_mesh_path.empty()) {
@@ -82,13 +84,13 @@ absl::StatusOr<Scene> StandardScene(absl::string_view name, absl::string_view li
     }
     return LiverScene(liver_mesh_path);
   }
-  const std::vector<std::string> embedded = EmbeddedSceneNames();
+  const std::vector<std::string> embedded = sim::EmbeddedSceneNames();
   if (std::find(embedded.begin(), embedded.end(), name) == embedded.end()) {
     return absl::NotFoundError(absl::StrCat("no standard scene '", name,
                                             "'; there are: ", absl::StrJoin(embedded, ", "),
                                             ", lattice-poor, liver"));
   }
-  return LoadScene(name);
+  return sim::LoadScene(name);
 }
 
 absl::StatusOr<std::vector<cut::BladePose>> StandardPath(absl::string_view name) {
@@ -98,7 +100,7 @@ absl::StatusOr<std::vector<cut::BladePose>> StandardPath(absl::string_view name)
   }
   const bool liver = name == "liver-across";
   // The liver path is in the liver's units: a 5.4 cm blade moving 1 mm a pose.
-  absl::StatusOr<std::vector<cut::BladePose>> path = cut::ParseBladePathJson(
+  absl::StatusOr<std::vector<cut::BladePose>> path = sim::ParseBladePathJson(
       *text, name,
       liver ? cut::BladeLimits{.max_length = 10, .max_step = 1, .max_speed = 20}
             : cut::BladeLimits{});
@@ -122,4 +124,4 @@ std::vector<StandardCut> StandardCuts(const std::vector<std::string>& scenes) {
   return cuts;
 }
 
-}  // namespace kerf::sim
+}  // namespace kerf::lab

@@ -1,21 +1,22 @@
-#include "cli/experiment_command.h"
+#include "cli/experiments/experiment_command.h"
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_split.h"
 #include "cli/command_args.h"
 #include "cli/cut_command.h"
-#include "cli/hand_cut_experiment.h"
+#include "cli/experiments/hand_cut_experiment.h"
+#include "cli/experiments/stability_experiment.h"
+#include "cli/experiments/tradeoff_experiment.h"
 #include "cli/json_output.h"
-#include "cli/stability_experiment.h"
-#include "cli/tradeoff_experiment.h"
-#include "cut/progressive_case_paths.h"
 #include "embedded_text.h"
 #include "kerf/v1/cut_report.pb.h"
 #include "kerf/v1/live_cut_report.pb.h"
+#include "lab/live_cut.h"
+#include "lab/progressive_case_paths.h"
+#include "lab/standard_scenes.h"
 #include "mesh/mesh_quality.h"
-#include "sim/live_cut.h"
-#include "sim/standard_scenes.h"
+#include "sim/blade_messages.h"
 
 namespace kerf::cli {
 namespace {
@@ -48,7 +49,7 @@ absl::StatusOr<std::string> LatticeCut(bool json) {
       if (!m.ok()) return m.status();
       const std::optional<absl::string_view> json_path =
           FindEmbeddedText(EmbeddedBladePaths(), path);
-      absl::StatusOr<std::vector<cut::BladePose>> poses = cut::ParseBladePathJson(
+      absl::StatusOr<std::vector<cut::BladePose>> poses = sim::ParseBladePathJson(
           *json_path, path,
           LimitsForMeshSize(mesh::MeasureBounds(*m, /*current=*/true).diagonal()));
       if (!poses.ok()) return poses.status();
@@ -76,15 +77,15 @@ absl::StatusOr<std::string> LatticeCut(bool json) {
   return out;
 }
 
-// Every scripted path of cut::ProgressiveCasePaths, cut progressively with the least snapping:
+// Every scripted path of lab::ProgressiveCasePaths, cut progressively with the least snapping:
 // how often each Table 1 case was reached, and on which paths, and whether every intermediate
 // mesh was valid.
 absl::StatusOr<std::string> ProgressiveCases(bool json) {
   kerf::v1::CutExperiment experiment;
   experiment.set_name("progressive-cases");
   experiment.set_scene("a 6 x 2 x 2 cm lattice of 1 cm cubes, at rest");
-  for (const cut::ScriptedPath& path : cut::ProgressiveCasePaths()) {
-    mesh::TetMesh m = cut::ScriptedPathLattice();
+  for (const lab::ScriptedPath& path : lab::ProgressiveCasePaths()) {
+    mesh::TetMesh m = lab::ScriptedPathLattice();
     CutOptions options;
     options.mode = cut::CutMode::kProgressive;
     options.check = CheckWhen::kEveryPose;
@@ -121,7 +122,7 @@ absl::StatusOr<std::string> ProgressiveCases(bool json) {
 // critical step re-estimated after every cut, explicit in sub-steps of 1 ms, and backward
 // Euler at 1 ms.
 absl::StatusOr<std::string> LiveCut(bool json) {
-  const sim::LiveCutOptions options = {.max_wall_seconds = kRowWallSeconds};
+  const lab::LiveCutOptions options = {.max_wall_seconds = kRowWallSeconds};
   kerf::v1::LiveCutExperiment experiment;
   experiment.set_scene("lattice-tension");
   experiment.set_path("lattice-straight");
@@ -133,7 +134,7 @@ absl::StatusOr<std::string> LiveCut(bool json) {
   const std::optional<absl::string_view> json_path =
       FindEmbeddedText(EmbeddedBladePaths(), experiment.path());
   absl::StatusOr<std::vector<cut::BladePose>> poses =
-      cut::ParseBladePathJson(*json_path, experiment.path(), cut::BladeLimits{});
+      sim::ParseBladePathJson(*json_path, experiment.path(), cut::BladeLimits{});
   if (!poses.ok()) return poses.status();
   struct Integration {
     kerf::v1::Integration::Method method;
@@ -155,7 +156,7 @@ absl::StatusOr<std::string> LiveCut(bool json) {
       scene->time_step = integration.time_step;
       scene->cut_mode = mode;
       absl::StatusOr<kerf::v1::LiveCutRow> row =
-          sim::RunLiveCut(*std::move(scene), *poses, options);
+          lab::RunLiveCut(*std::move(scene), *poses, options);
       if (!row.ok()) return row.status();
       row->set_integration(integration.name);
       row->set_cut_mode(mode == kerf::v1::Cutting::DEFERRED ? "deferred" : "progressive");
@@ -247,12 +248,12 @@ absl::StatusOr<std::string> Stability(CommandArgs* rest, bool json) {
         return absl::InvalidArgumentError("--scenes: the liver comes with --liver FILE");
       }
       // Built once here, so that a wrong name is refused before any run.
-      if (absl::Status s = sim::StandardScene(name, "").status(); !s.ok()) return s;
+      if (absl::Status s = lab::StandardScene(name, "").status(); !s.ok()) return s;
       options.scenes.emplace_back(name);
     }
   }
   if (!options.liver_mesh_path.empty()) {
-    if (absl::Status s = sim::LiverScene(options.liver_mesh_path).status(); !s.ok()) return s;
+    if (absl::Status s = lab::LiverScene(options.liver_mesh_path).status(); !s.ok()) return s;
   }
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> slow_down =
       rest->TakeOption("--slow-down", 1);

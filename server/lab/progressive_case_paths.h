@@ -9,13 +9,13 @@
 #include "cut/blade.h"
 #include "mesh/tet_mesh.h"
 
-namespace kerf::cut {
+namespace kerf::lab {
 
 struct ScriptedPath {
   std::string name;
-  std::string what;                 // in words
-  std::vector<BladePose> poses;     // 1 mm apart or less, 10 ms apart
-  std::vector<int> expected_cases;  // Table 1 cases it reaches (what the tests check)
+  std::string what;                   // in words
+  std::vector<cut::BladePose> poses;  // 1 mm apart or less, 10 ms apart
+  std::vector<int> expected_cases;    // Table 1 cases it reaches (what the tests check)
 };
 
 // The lattice the paths are written for: 6 x 2 x 2 cm of 1 cm cubes (6 tets each), metres.
@@ -23,4 +23,4 @@ mesh::TetMesh ScriptedPathLattice();
 
 std::vector<ScriptedPath> ProgressiveCasePaths();
 
-}  // namespace kerf::cut
+}  // namespace kerf::lab

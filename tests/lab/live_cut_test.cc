@@ -1,6 +1,6 @@
 // Cuts made live (the tissue moving under its load while the blade cuts it): no standard scene
 // blows up, and a low height guard (few pieces softened) still cuts the whole cross-section.
-#include "sim/live_cut.h"
+#include "lab/live_cut.h"
 
 #include <gtest/gtest.h>
 
@@ -8,15 +8,15 @@
 
 #include "absl/strings/str_cat.h"
 #include "cut/blade.h"
+#include "lab/standard_scenes.h"
 #include "sim/scene.h"
-#include "sim/standard_scenes.h"
 #include "support/shared_meshes.h"
 
-namespace kerf::sim {
+namespace kerf::lab {
 namespace {
 
 // The promise: with its default settings no standard scene blows up under a standard
-// cut made live (sim/standard_scenes.h: the lattice scenes and the poor-quality lattice along
+// cut made live (lab/standard_scenes.h: the lattice scenes and the poor-quality lattice along
 // both lattice paths, the liver across, when shared/ is beside the repo). Blowing up is the
 // live-cut experiment's test (energy over 10 times that at the first pose): the mechanical energy
 // leaves out gravity's, so a liver whose cut lets it sag gains some (1.47 times) without anything
@@ -26,7 +26,7 @@ TEST(LiveCut, NoStandardSceneBlowsUpWithItsDefaults) {
   const std::string liver = kerf::testing::SharedMeshPath("liver.msh");
   if (!liver.empty()) scenes.push_back("liver");
   for (const StandardCut& run : StandardCuts(scenes)) {
-    absl::StatusOr<Scene> scene = StandardScene(run.scene, liver);
+    absl::StatusOr<sim::Scene> scene = StandardScene(run.scene, liver);
     ASSERT_TRUE(scene.ok()) << scene.status();
     absl::StatusOr<std::vector<cut::BladePose>> path = StandardPath(run.path);
     ASSERT_TRUE(path.ok()) << path.status();
@@ -56,7 +56,7 @@ TEST(LiveCut, TheLiverCutProgressivelyWithoutSnappingHoldsUnderBothLaws) {
   const absl::StatusOr<std::vector<cut::BladePose>> path = StandardPath("liver-across");
   ASSERT_TRUE(path.ok()) << path.status();
   for (const fem::ElasticLaw law : {fem::ElasticLaw::kLinear, fem::ElasticLaw::kCorotational}) {
-    absl::StatusOr<Scene> scene = StandardScene("liver", liver);
+    absl::StatusOr<sim::Scene> scene = StandardScene("liver", liver);
     ASSERT_TRUE(scene.ok()) << scene.status();
     scene->method = kerf::v1::Integration::IMPLICIT_EULER;
     scene->time_step = 1e-3;
@@ -75,7 +75,7 @@ TEST(LiveCut, TheLiverCutProgressivelyWithoutSnappingHoldsUnderBothLaws) {
 TEST(LiveCut, WithALowHeightGuardEveryTetTheBladeCrossesIsCut) {
   const absl::StatusOr<std::vector<cut::BladePose>> path = StandardPath("lattice-straight");
   ASSERT_TRUE(path.ok()) << path.status();
-  absl::StatusOr<Scene> scene = LoadScene("lattice-tension");
+  absl::StatusOr<sim::Scene> scene = sim::LoadScene("lattice-tension");
   ASSERT_TRUE(scene.ok()) << scene.status();
   ASSERT_EQ(scene->method, kerf::v1::Integration::IMPLICIT_EULER);
   scene->min_temporary_height = 0.005;
@@ -90,4 +90,4 @@ TEST(LiveCut, WithALowHeightGuardEveryTetTheBladeCrossesIsCut) {
 }
 
 }  // namespace
-}  // namespace kerf::sim
+}  // namespace kerf::lab

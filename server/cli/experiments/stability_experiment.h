@@ -1,6 +1,6 @@
 // kerf experiment stability: the stability matrix. Every standard scene and cut
-// (sim/standard_scenes.h: the lattice under tension, a deliberately poor-quality lattice, the
-// liver of ../shared/meshes when its file is given) is cut live (sim/live_cut.h) by each
+// (lab/standard_scenes.h: the lattice under tension, a deliberately poor-quality lattice, the
+// liver of ../shared/meshes when its file is given) is cut live (lab/live_cut.h) by each
 // integrator (explicit at 0.9 of the critical step re-estimated after every cut, explicit in
 // sub-steps of 1 ms, backward Euler at 1 ms) with each elastic law (linear, corotational),
 // cut progressively (the default) and deferred, each without and with snapping at
@@ -12,7 +12,7 @@
 
 #include "absl/status/statusor.h"
 #include "kerf/v1/live_cut_report.pb.h"
-#include "sim/live_cut.h"
+#include "lab/live_cut.h"
 
 namespace kerf::cli {
 
@@ -27,7 +27,7 @@ inline constexpr double kRowWallSeconds = 30;
 struct StabilityOptions {
   std::vector<std::string> scenes = {"lattice-tension", "lattice-poor"};
   std::string liver_mesh_path;  // adds the liver when set
-  sim::LiveCutOptions live_cut = {.max_wall_seconds = kRowWallSeconds};
+  lab::LiveCutOptions live_cut = {.max_wall_seconds = kRowWallSeconds};
 };
 
 absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOptions& options);

@@ -1,4 +1,4 @@
-#include "sim/accuracy_bar.h"
+#include "lab/accuracy_bar.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include "support/find_vertex.h"
 #include "support/status_message.h"
 
-namespace kerf::sim {
+namespace kerf::lab {
 namespace {
 
 using kerf::testing::StatusMessage;
@@ -30,7 +30,7 @@ TEST(AccuracyBar, HoldsTheClampedAndLoadedFaces) {
   EXPECT_EQ(HeldDisplacement(BarLoad::kTension, {5, 1, 0}), Eigen::Vector3d(0.5, 0, 0));
   // A quarter turn about the axis y = z = 0.5 takes the corner (5, 1, 1) to (5, 0, 1).
   EXPECT_TRUE(HeldDisplacement(BarLoad::kTwist, {5, 1, 1})->isApprox(Eigen::Vector3d(0, -1, 0)));
-  absl::StatusOr<Scene> scene = MakeBarScene(
+  absl::StatusOr<sim::Scene> scene = MakeBarScene(
       BarLoad::kTwist, 2, kerf::v1::Integration::IMPLICIT_EULER, fem::ElasticLaw::kCorotational, 6);
   ASSERT_TRUE(scene.ok()) << scene.status();
   EXPECT_EQ(scene->mesh.tet_count(), 6u * 10 * 2 * 2);
@@ -58,8 +58,8 @@ TEST(AccuracyBar, TheCantileverSettlesToItsStaticDeflection) {
 // The tension bar's quantity is the force holding its pulled face: K u summed there, u the
 // static solution.
 TEST(AccuracyBar, TheTensionBarsForceIsTheStaticReaction) {
-  absl::StatusOr<Scene> scene = MakeBarScene(BarLoad::kTension, 2, kerf::v1::Integration::STATIC,
-                                             fem::ElasticLaw::kLinear, 0);
+  absl::StatusOr<sim::Scene> scene = MakeBarScene(
+      BarLoad::kTension, 2, kerf::v1::Integration::STATIC, fem::ElasticLaw::kLinear, 0);
   ASSERT_TRUE(scene.ok()) << scene.status();
   absl::StatusOr<fem::TensorMassModel> model =
       fem::TensorMassModel::Create(scene->mesh, scene->material);
@@ -103,4 +103,4 @@ TEST(AccuracyBar, TheTwistShowsTheLinearModelsArtefact) {
 }
 
 }  // namespace
-}  // namespace kerf::sim
+}  // namespace kerf::lab

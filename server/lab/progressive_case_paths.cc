@@ -1,17 +1,17 @@
-#include "cut/progressive_case_paths.h"
+#include "lab/progressive_case_paths.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "mesh/box_lattice.h"
 
-namespace kerf::cut {
+namespace kerf::lab {
 namespace {
 
 // Appends poses moving the blade by `tip_travel` and `heel_travel` in steps of at most 1 mm.
-void Move(std::vector<BladePose>* poses, const Eigen::Vector3d& tip_travel,
+void Move(std::vector<cut::BladePose>* poses, const Eigen::Vector3d& tip_travel,
           const Eigen::Vector3d& heel_travel) {
-  const BladePose from = poses->back();
+  const cut::BladePose from = poses->back();
   const int steps = std::max(
       1, static_cast<int>(std::ceil(std::max(tip_travel.norm(), heel_travel.norm()) / 0.001)));
   for (int k = 1; k <= steps; ++k) {
@@ -21,15 +21,15 @@ void Move(std::vector<BladePose>* poses, const Eigen::Vector3d& tip_travel,
   }
 }
 
-void Hold(std::vector<BladePose>* poses, int count) {
+void Hold(std::vector<cut::BladePose>* poses, int count) {
   for (int k = 0; k < count; ++k) {
-    BladePose pose = poses->back();
+    cut::BladePose pose = poses->back();
     pose.time += 0.01;
     poses->push_back(pose);
   }
 }
 
-std::vector<BladePose> Start(const Eigen::Vector3d& tip, const Eigen::Vector3d& heel) {
+std::vector<cut::BladePose> Start(const Eigen::Vector3d& tip, const Eigen::Vector3d& heel) {
   return {{0, tip, heel}};
 }
 
@@ -45,20 +45,20 @@ std::vector<ScriptedPath> ProgressiveCasePaths() {
   const Eigen::Vector3d y(0, 1, 0), z(0, 0, 1);
   {
     // Through the whole depth, across the bar: the blade edge crosses two faces of each tet.
-    std::vector<BladePose> p = Start({0.0337, -0.005, -0.005}, {0.0337, -0.005, 0.025});
+    std::vector<cut::BladePose> p = Start({0.0337, -0.005, -0.005}, {0.0337, -0.005, 0.025});
     Move(&p, 0.03 * y, 0.03 * y);
     paths.push_back({"through", "through the whole depth, across the bar", p, {3, 6, 10}});
   }
   {
     // The tip 9.3 mm deep, across the bar: the tip is inside the tets it cuts.
-    std::vector<BladePose> p = Start({0.0337, -0.005, 0.0107}, {0.0337, -0.005, 0.03});
+    std::vector<cut::BladePose> p = Start({0.0337, -0.005, 0.0107}, {0.0337, -0.005, 0.03});
     Move(&p, 0.03 * y, 0.03 * y);
     paths.push_back({"tip-inside", "the tip 9.3 mm deep, across the bar", p, {4}});
   }
   {
     // Plunging straight down into the bar, then across: the tip enters a tet through the face
     // the blade crosses (case 1), then passes through it into the tet below (case 2).
-    std::vector<BladePose> p = Start({0.0337, 0.0063, 0.025}, {0.0337, 0.0063, 0.045});
+    std::vector<cut::BladePose> p = Start({0.0337, 0.0063, 0.025}, {0.0337, 0.0063, 0.045});
     Move(&p, -0.0203 * z, -0.0203 * z);
     Move(&p, 0.008 * y, 0.008 * y);
     paths.push_back({"plunge", "straight down into the bar, then across", p, {1, 2}});
@@ -97,14 +97,14 @@ std::vector<ScriptedPath> ProgressiveCasePaths() {
        {11}},
   };
   for (const auto& t : tilted) {
-    std::vector<BladePose> p = Start(t.tip, t.heel);
+    std::vector<cut::BladePose> p = Start(t.tip, t.heel);
     for (int k = 0; k < 40; ++k) Move(&p, t.tip_step, t.heel_step);
     paths.push_back({t.name, "tilted, across the bar", p, t.cases});
   }
   {
     // The tip inside: it stops in the middle of a tet, hesitates, turns back half way, goes on
     // again and stops inside; the path ends there (the blade is withdrawn inside the tets).
-    std::vector<BladePose> p = Start({0.0237, -0.005, 0.0127}, {0.0237, -0.005, 0.03});
+    std::vector<cut::BladePose> p = Start({0.0237, -0.005, 0.0127}, {0.0237, -0.005, 0.03});
     Move(&p, 0.0105 * y, 0.0105 * y);
     Hold(&p, 5);
     Move(&p, -0.004 * y, -0.004 * y);
@@ -118,7 +118,7 @@ std::vector<ScriptedPath> ProgressiveCasePaths() {
   {
     // Through the whole depth, tilting as it goes (the heel moves further than the tip), with
     // a tremble across the cut.
-    std::vector<BladePose> p = Start({0.0137, -0.005, -0.005}, {0.0117, -0.005, 0.025});
+    std::vector<cut::BladePose> p = Start({0.0137, -0.005, -0.005}, {0.0117, -0.005, 0.025});
     for (int k = 0; k < 6; ++k) {
       Move(&p, Eigen::Vector3d(0.0007, 0.005, 0), Eigen::Vector3d(0.0017, 0.005, 0));
       Move(&p, Eigen::Vector3d(-0.0004, 0, 0), Eigen::Vector3d(-0.0004, 0, 0));
@@ -129,4 +129,4 @@ std::vector<ScriptedPath> ProgressiveCasePaths() {
   return paths;
 }
 
-}  // namespace kerf::cut
+}  // namespace kerf::lab

@@ -1,7 +1,7 @@
-// kerf experiment tradeoff: speed against accuracy. Each bar of sim/accuracy_bar.h, at each
+// kerf experiment tradeoff: speed against accuracy. Each bar of lab/accuracy_bar.h, at each
 // resolution, with each elastic law and each integrator, settles from a start near its answer;
 // a row records the wall time per simulated second and the error against CalculiX on
-// quadratic tets (cli/calculix_reference.h). `kerf chart` draws the rows.
+// quadratic tets (cli/experiments/calculix_reference.h). `kerf chart` draws the rows.
 #pragma once
 
 #include <string>

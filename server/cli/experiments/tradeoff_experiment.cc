@@ -1,12 +1,12 @@
-#include "cli/tradeoff_experiment.h"
+#include "cli/experiments/tradeoff_experiment.h"
 
 #include <cmath>
 #include <limits>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "cli/calculix_reference.h"
-#include "sim/accuracy_bar.h"
+#include "cli/experiments/calculix_reference.h"
+#include "lab/accuracy_bar.h"
 
 namespace kerf::cli {
 namespace {
@@ -17,13 +17,13 @@ constexpr kerf::v1::Integration::Method kMethods[] = {
 constexpr double kSameError = 1e-3;  // relative
 constexpr fem::ElasticLaw kLaws[] = {fem::ElasticLaw::kLinear, fem::ElasticLaw::kCorotational};
 
-std::string QuantityName(sim::BarLoad load) {
+std::string QuantityName(lab::BarLoad load) {
   switch (load) {
-    case sim::BarLoad::kCantilever:
+    case lab::BarLoad::kCantilever:
       return "displacement of the tip-face centre (5, 0.5, 0.5)";
-    case sim::BarLoad::kTension:
+    case lab::BarLoad::kTension:
       return "force holding the pulled face x = 5";
-    case sim::BarLoad::kTwist:
+    case lab::BarLoad::kTwist:
       return "displacement of the mid-length corner (2.5, 1, 1)";
   }
   return "";
@@ -56,30 +56,30 @@ void MarkParetoFront(kerf::v1::TradeoffExperiment* experiment) {
 
 absl::StatusOr<kerf::v1::TradeoffExperiment> RunTradeoff(const TradeoffOptions& options) {
   for (const int n : options.resolutions) {
-    if (absl::Status s = sim::CheckBarResolution(n); !s.ok()) return s;
+    if (absl::Status s = lab::CheckBarResolution(n); !s.ok()) return s;
   }
-  if (absl::Status s = sim::CheckBarResolution(options.reference_resolution); !s.ok()) return s;
+  if (absl::Status s = lab::CheckBarResolution(options.reference_resolution); !s.ok()) return s;
   kerf::v1::TradeoffExperiment experiment;
   experiment.set_settle_seconds(options.settle_seconds);
   experiment.set_mass_damping(options.mass_damping);
-  for (const sim::BarLoad load : sim::kBarLoads) {
+  for (const lab::BarLoad load : lab::kBarLoads) {
     absl::StatusOr<Eigen::Vector3d> reference =
         CalculixReference(load, options.reference_resolution);
     if (!reference.ok()) return reference.status();
     kerf::v1::TradeoffReference& r = *experiment.add_references();
-    r.set_load(sim::BarLoadName(load));
+    r.set_load(lab::BarLoadName(load));
     r.set_quantity(QuantityName(load));
     r.set_solver(absl::StrCat("CalculiX C3D10, n = ", options.reference_resolution,
-                              load == sim::BarLoad::kTwist ? ", NLGEOM" : ", linear"));
+                              load == lab::BarLoad::kTwist ? ", NLGEOM" : ", linear"));
     r.mutable_value()->Add(reference->data(), reference->data() + 3);
     for (const int n : options.resolutions) {
       for (const fem::ElasticLaw law : kLaws) {
         for (const kerf::v1::Integration::Method method : kMethods) {
-          absl::StatusOr<sim::BarSettleResult> run =
-              sim::SettleBar(load, n, method, law, options.mass_damping, options.settle_seconds);
+          absl::StatusOr<lab::BarSettleResult> run =
+              lab::SettleBar(load, n, method, law, options.mass_damping, options.settle_seconds);
           if (!run.ok()) return run.status();
           kerf::v1::TradeoffRow& row = *experiment.add_rows();
-          row.set_load(sim::BarLoadName(load));
+          row.set_load(lab::BarLoadName(load));
           row.set_resolution(n);
           row.set_tets(6 * 5 * n * n * n);
           row.set_law(law == fem::ElasticLaw::kLinear ? "linear" : "corotational");

@@ -1,4 +1,4 @@
-#include "cli/calculix_reference.h"
+#include "cli/experiments/calculix_reference.h"
 
 #include <array>
 #include <fstream>
@@ -21,8 +21,8 @@ std::string Coordinates(const Eigen::Vector3d& p) {
 // The deck: the lattice's vertices (node = index + 1) and a node in the middle of each edge,
 // C3D10 elements (corners, then the middles of edges 12, 23, 13, 14, 24, 34), the held faces
 // and the load, and the quantity printed.
-absl::StatusOr<std::string> Deck(sim::BarLoad load, int n) {
-  absl::StatusOr<sim::Scene> scene = sim::MakeBarScene(
+absl::StatusOr<std::string> Deck(lab::BarLoad load, int n) {
+  absl::StatusOr<sim::Scene> scene = lab::MakeBarScene(
       load, n, kerf::v1::Integration::STATIC, fem::ElasticLaw::kLinear, /*mass_damping=*/0);
   if (!scene.ok()) return scene.status();
   const mesh::TetMesh& m = scene->mesh;
@@ -50,14 +50,14 @@ absl::StatusOr<std::string> Deck(sim::BarLoad load, int n) {
   }
   std::string deck = "*HEADING\nkerf accuracy bar\n*NODE, NSET=NALL\n";
   std::string held, pulled, probe;
-  const std::optional<Eigen::Vector3d> probe_point = sim::ProbePoint(load);
+  const std::optional<Eigen::Vector3d> probe_point = lab::ProbePoint(load);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     absl::StrAppend(&deck, i + 1, ", ", Coordinates(nodes[i]), "\n");
-    if (const std::optional<Eigen::Vector3d> u = sim::HeldDisplacement(load, nodes[i])) {
+    if (const std::optional<Eigen::Vector3d> u = lab::HeldDisplacement(load, nodes[i])) {
       for (int c = 0; c < 3; ++c) {
         absl::StrAppendFormat(&held, "%d, %d, %d, %.12g\n", i + 1, c + 1, c + 1, (*u)[c]);
       }
-      if (nodes[i].x() > sim::kBarLength / 2) absl::StrAppend(&pulled, i + 1, "\n");
+      if (nodes[i].x() > lab::kBarLength / 2) absl::StrAppend(&pulled, i + 1, "\n");
     }
     if (probe_point.has_value() && (nodes[i] - *probe_point).norm() < 1e-9) {
       probe = absl::StrCat(i + 1, "\n");
@@ -69,10 +69,10 @@ absl::StatusOr<std::string> Deck(sim::BarLoad load, int n) {
   absl::StrAppend(&deck,
                   "*MATERIAL, NAME=TISSUE\n*ELASTIC\n5000., 0.45\n*DENSITY\n1.\n"
                   "*SOLID SECTION, ELSET=EALL, MATERIAL=TISSUE\n",
-                  load == sim::BarLoad::kTwist ? "*STEP, NLGEOM, INC=1000\n*STATIC\n0.1, 1.\n"
+                  load == lab::BarLoad::kTwist ? "*STEP, NLGEOM, INC=1000\n*STATIC\n0.1, 1.\n"
                                                : "*STEP\n*STATIC\n",
                   "*BOUNDARY\n", held);
-  if (load == sim::BarLoad::kCantilever)
+  if (load == lab::BarLoad::kCantilever)
     absl::StrAppend(&deck, "*DLOAD\nEALL, GRAV, 1., 0., 0., -1.\n");
   absl::StrAppend(&deck, probe_point.has_value() ? "*NODE PRINT, NSET=PROBE\nU\n"
                                                  : "*NODE PRINT, NSET=PULLED, TOTALS=ONLY\nRF\n");
@@ -106,7 +106,7 @@ std::optional<Eigen::Vector3d> LastPrinted(const std::filesystem::path& dat,
 
 }  // namespace
 
-absl::StatusOr<Eigen::Vector3d> CalculixReference(sim::BarLoad load, int n) {
+absl::StatusOr<Eigen::Vector3d> CalculixReference(lab::BarLoad load, int n) {
   absl::StatusOr<std::string> deck = Deck(load, n);
   if (!deck.ok()) return deck.status();
   absl::StatusOr<TemporaryFolder> folder = TemporaryFolder::Create("kerf-ccx");
@@ -117,10 +117,10 @@ absl::StatusOr<Eigen::Vector3d> CalculixReference(sim::BarLoad load, int n) {
   }
   const std::optional<Eigen::Vector3d> quantity =
       LastPrinted(folder->path() / "bar.dat",
-                  sim::ProbePoint(load).has_value() ? "displacements" : "total force");
+                  lab::ProbePoint(load).has_value() ? "displacements" : "total force");
   if (!quantity.has_value()) {
     return absl::InternalError(
-        absl::StrCat("ccx printed no result for the ", sim::BarLoadName(load), " bar at n = ", n));
+        absl::StrCat("ccx printed no result for the ", lab::BarLoadName(load), " bar at n = ", n));
   }
   return *quantity;
 }

@@ -1,4 +1,4 @@
-#include "sim/accuracy_bar.h"
+#include "lab/accuracy_bar.h"
 
 #include <Eigen/Geometry>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include "mesh/box_lattice.h"
 #include "sim/simulation.h"
 
-namespace kerf::sim {
+namespace kerf::lab {
 namespace {
 
 constexpr double kPull = 0.5;                   // kTension: 10% of the length
@@ -79,13 +79,13 @@ absl::Status CheckBarResolution(int n) {
   return absl::OkStatus();
 }
 
-absl::StatusOr<Scene> MakeBarScene(BarLoad load, int n, kerf::v1::Integration::Method method,
-                                   fem::ElasticLaw law, double mass_damping) {
+absl::StatusOr<sim::Scene> MakeBarScene(BarLoad load, int n, kerf::v1::Integration::Method method,
+                                        fem::ElasticLaw law, double mass_damping) {
   if (absl::Status s = CheckBarResolution(n); !s.ok()) return s;
   absl::StatusOr<mesh::TetMesh> lattice =
       mesh::MakeBoxLattice({.cells_x = 5 * n, .cells_y = n, .cells_z = n, .size = {5, 1, 1}});
   if (!lattice.ok()) return lattice.status();
-  Scene scene;
+  sim::Scene scene;
   scene.name = absl::StrCat("bar-", BarLoadName(load), "-", n);
   scene.mesh = *std::move(lattice);
   scene.material = {
@@ -115,11 +115,12 @@ std::vector<Eigen::Vector3d> StartingDisplacement(BarLoad load, const mesh::TetM
 absl::StatusOr<BarSettleResult> SettleBar(BarLoad load, int n, kerf::v1::Integration::Method method,
                                           fem::ElasticLaw law, double mass_damping,
                                           double simulated_seconds) {
-  absl::StatusOr<Scene> scene = MakeBarScene(load, n, method, law, mass_damping);
+  absl::StatusOr<sim::Scene> scene = MakeBarScene(load, n, method, law, mass_damping);
   if (!scene.ok()) return scene.status();
-  absl::StatusOr<std::unique_ptr<Simulation>> created = Simulation::Create(*std::move(scene));
+  absl::StatusOr<std::unique_ptr<sim::Simulation>> created =
+      sim::Simulation::Create(*std::move(scene));
   if (!created.ok()) return created.status();
-  Simulation& sim = **created;
+  sim::Simulation& sim = **created;
   if (absl::Status s = sim.SetDisplacement(StartingDisplacement(load, sim.mesh())); !s.ok()) {
     return s;
   }
@@ -158,4 +159,4 @@ absl::StatusOr<BarSettleResult> SettleBar(BarLoad load, int n, kerf::v1::Integra
   return result;
 }
 
-}  // namespace kerf::sim
+}  // namespace kerf::lab

@@ -1,7 +1,7 @@
-#include "cli/stability_experiment.h"
+#include "cli/experiments/stability_experiment.h"
 
 #include "absl/strings/str_format.h"
-#include "sim/standard_scenes.h"
+#include "lab/standard_scenes.h"
 
 namespace kerf::cli {
 namespace {
@@ -37,14 +37,14 @@ absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOption
   experiment.set_max_wall_seconds(options.live_cut.max_wall_seconds);
   std::vector<std::string> scenes = options.scenes;
   if (!options.liver_mesh_path.empty()) scenes.push_back("liver");
-  for (const sim::StandardCut& cut : sim::StandardCuts(scenes)) {
-    absl::StatusOr<std::vector<cut::BladePose>> path = sim::StandardPath(cut.path);
+  for (const lab::StandardCut& cut : lab::StandardCuts(scenes)) {
+    absl::StatusOr<std::vector<cut::BladePose>> path = lab::StandardPath(cut.path);
     if (!path.ok()) return path.status();
     for (const Cutting& cutting : kCuttings) {
       for (const Integration& integration : kIntegrations) {
         for (const fem::ElasticLaw law :
              {fem::ElasticLaw::kLinear, fem::ElasticLaw::kCorotational}) {
-          absl::StatusOr<sim::Scene> scene = sim::StandardScene(cut.scene, options.liver_mesh_path);
+          absl::StatusOr<sim::Scene> scene = lab::StandardScene(cut.scene, options.liver_mesh_path);
           if (!scene.ok()) return scene.status();
           scene->method = integration.method;
           scene->time_step = integration.time_step;
@@ -52,7 +52,7 @@ absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOption
           scene->snap_fraction = cutting.snap_fraction;
           scene->elastic.law = law;
           absl::StatusOr<kerf::v1::LiveCutRow> row =
-              sim::RunLiveCut(*std::move(scene), *path, options.live_cut);
+              lab::RunLiveCut(*std::move(scene), *path, options.live_cut);
           if (!row.ok()) return row.status();
           row->set_scene(cut.scene);
           row->set_path(cut.path);

@@ -1,4 +1,4 @@
-#include "sim/standard_scenes.h"
+#include "lab/standard_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -6,14 +6,14 @@
 #include "mesh/mesh_validation.h"
 #include "support/status_message.h"
 
-namespace kerf::sim {
+namespace kerf::lab {
 namespace {
 
 using kerf::testing::StatusMessage;
 
 TEST(StandardScenes, ThePoorLatticeIsTheLatticeWithSliversInside) {
-  absl::StatusOr<Scene> lattice = LoadScene("lattice-tension");
-  absl::StatusOr<Scene> poor = PoorQualityLatticeScene();
+  absl::StatusOr<sim::Scene> lattice = sim::LoadScene("lattice-tension");
+  absl::StatusOr<sim::Scene> poor = PoorQualityLatticeScene();
   ASSERT_TRUE(lattice.ok() && poor.ok()) << poor.status();
   EXPECT_EQ(poor->name, "lattice-poor");
   EXPECT_EQ(poor->mesh.tet_count(), 576u);
@@ -48,4 +48,4 @@ TEST(StandardScenes, PathsAreInMetresAndUnknownNamesAreRefused) {
 }
 
 }  // namespace
-}  // namespace kerf::sim
+}  // namespace kerf::lab

@@ -3,7 +3,7 @@
 // twisted a quarter turn. Each is a 5 x 1 x 1 bar (unitless, as accuracy.md: E = 5000,
 // nu = 0.45, rho = 1) clamped at x = 0 and meshed as 5n x n x n cubes of six tets, and each is
 // judged by one vector quantity of its settled state that a converged reference (CalculiX on
-// quadratic tets: cli/calculix_reference.h) also gives.
+// quadratic tets: cli/experiments/calculix_reference.h) also gives.
 #pragma once
 
 #include <Eigen/Core>
@@ -16,7 +16,7 @@
 #include "kerf/v1/scene.pb.h"
 #include "sim/scene.h"
 
-namespace kerf::sim {
+namespace kerf::lab {
 
 enum class BarLoad {
   // Gravity rho g = 1 in -z. Quantity: the displacement of the tip-face centre (5, 0.5, 0.5).
@@ -50,8 +50,8 @@ absl::Status CheckBarResolution(int n);
 
 // The bar at resolution n (see CheckBarResolution) as a scene stepped by `method` (its automatic
 // step) with `law`, Rayleigh mass damping `mass_damping` (1/s), nothing cut.
-absl::StatusOr<Scene> MakeBarScene(BarLoad load, int n, kerf::v1::Integration::Method method,
-                                   fem::ElasticLaw law, double mass_damping);
+absl::StatusOr<sim::Scene> MakeBarScene(BarLoad load, int n, kerf::v1::Integration::Method method,
+                                        fem::ElasticLaw law, double mass_damping);
 
 // A displacement near the settled one, to settle from: the held faces' displacement carried
 // along the bar in proportion to x (zero for the cantilever). By vertex index.
@@ -72,4 +72,4 @@ absl::StatusOr<BarSettleResult> SettleBar(BarLoad load, int n, kerf::v1::Integra
                                           fem::ElasticLaw law, double mass_damping,
                                           double simulated_seconds);
 
-}  // namespace kerf::sim
+}  // namespace kerf::lab

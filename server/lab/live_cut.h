@@ -12,7 +12,7 @@
 #include "kerf/v1/live_cut_report.pb.h"
 #include "sim/scene.h"
 
-namespace kerf::sim {
+namespace kerf::lab {
 
 struct LiveCutOptions {
   double settle_seconds = 1;  // simulated before the first pose
@@ -29,8 +29,8 @@ struct LiveCutOptions {
 // it at the end. Fills every field of the row but `integration`, `cut_mode`, `scene`, `path`
 // and `law`. A pose the cutter refuses is returned as its error. The wall time is measured, so
 // that field alone differs between runs.
-absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(Scene scene,
+absl::StatusOr<kerf::v1::LiveCutRow> RunLiveCut(sim::Scene scene,
                                                 const std::vector<cut::BladePose>& path,
                                                 const LiveCutOptions& options);
 
-}  // namespace kerf::sim
+}  // namespace kerf::lab

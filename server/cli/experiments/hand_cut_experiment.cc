@@ -1,4 +1,4 @@
-#include "cli/hand_cut_experiment.h"
+#include "cli/experiments/hand_cut_experiment.h"
 
 #include <algorithm>
 #include <filesystem>
