@@ -74,6 +74,8 @@ class BladeCrossings {
 
   // After the mesh deformed (a physics step). O(vertices).
   absl::Status MeshDeformed() { return grid_.Refresh(); }
+  // The mesh's change log as of the grid's last refresh: none before it is read again.
+  mesh::ChangeMark synced() const { return grid_.synced(); }
 
  private:
   BladeCrossings(const mesh::TetMesh* mesh, TetGrid grid) : mesh_(mesh), grid_(std::move(grid)) {}

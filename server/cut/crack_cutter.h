@@ -131,6 +131,8 @@ class CrackCutter {
   // The blade is withdrawn: the crack ends where it was, and every tet still waiting splits.
   void Finish();
   absl::Status MeshDeformed() { return crossings_.MeshDeformed(); }
+  // The oldest point of the mesh's change log the cutter will read again.
+  mesh::ChangeMark synced() const { return crossings_.synced(); }
 
   CutMode mode() const { return mode_; }
   const CutStatistics& statistics() const { return statistics_; }

@@ -41,6 +41,8 @@ class TetGrid {
   // Also follows the deformation: re-registers the tets around vertices that moved beyond
   // the margin. O(vertices), as a physics step is: call it after steps, not per pose.
   absl::Status Refresh();
+  // The mesh's change log as of the last refresh: none before it is read again.
+  mesh::ChangeMark synced() const { return synced_; }
 
   // Live tets whose current bounding box may meet [low, high]: every such tet is included
   // once, others may be. O(cells covered + tets registered in them).

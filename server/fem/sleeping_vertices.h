@@ -60,6 +60,8 @@ class SleepingVertices {
   bool asleep(std::uint32_t i) const { return i < asleep_.size() && asleep_[i]; }
   // Whether the awake set changed in the last Refresh or Update.
   bool changed() const { return changed_; }
+  // The mesh's change log as of the last Refresh or Update: none before it is read again.
+  mesh::ChangeMark seen() const { return seen_; }
 
  private:
   void Wake(std::uint32_t i);

@@ -57,6 +57,8 @@ class TensorMassModel {
   absl::Status SyncWithMesh();
   // Whether the mesh has changed since the last sync (or creation).
   bool InSyncWithMesh() const { return synced_ == mesh_->change_log().Mark(); }
+  // The mesh's change log as of the last sync: the model reads none before it.
+  mesh::ChangeMark synced() const { return synced_; }
   // A tet carries its stiffness times `scale(t)` (in [0, 1], taken when it is added) and all
   // its mass: a progressive cut's thin pieces on the blade are softened
   // (cut::CrackCutter::StiffnessScale). For tets added (or reshaped) from the next sync on;

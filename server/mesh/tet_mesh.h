@@ -172,6 +172,9 @@ class TetMesh {
   // --- Changes -------------------------------------------------------------------------------
 
   const MeshChangeLog& change_log() const { return change_log_; }
+  // Forgets the changes before `mark`, which every reader of the log has passed (a reader asking
+  // for them gets OUT_OF_RANGE). O(changes kept).
+  void DiscardChangesBefore(ChangeMark mark) { change_log_.DiscardBefore(mark); }
 
  private:
   std::vector<Eigen::Vector3d> rest_;

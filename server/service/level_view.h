@@ -51,6 +51,9 @@ class LevelView {
 
   kerf::v1::Level level() const { return level_; }
   std::uint64_t sequence() const { return sequence_; }
+  // The mesh's change log as of the last frame. A view may lose the history after it (it then
+  // compares with the mesh, O(mesh), once).
+  mesh::ChangeMark synced() const { return synced_; }
 
  private:
   struct Element {

@@ -530,7 +530,22 @@ void Session::Tick() {
       std::exchange(on_withdrawn_, nullptr)();
     }
   }
+  DiscardReadChanges();
   if (options_.after_tick) options_.after_tick(ticks_, simulation_time_, *simulation_);
+}
+
+void Session::DiscardReadChanges() {
+  // The views someone watches read on from their last frame; the others compare with the mesh
+  // when they are watched again.
+  mesh::ChangeMark keep = simulation_->mesh().change_log().Mark();
+  const auto older = [&](const View& view) {
+    if (!view.subscribers.empty() && view.frames.synced().sequence < keep.sequence) {
+      keep = view.frames.synced();
+    }
+  };
+  for (const auto& view : observer_views_) older(*view);
+  if (cutter_view_ != nullptr) older(*cutter_view_);
+  simulation_->DiscardChangesBefore(keep);
 }
 
 void Session::Publish(View& view, std::uint64_t sequence, const TickReport& report) {

@@ -160,6 +160,9 @@ class Session {
   void EndCutWith(const absl::Status& why) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   void ReportReplayFailure(std::uint64_t tick, const absl::Status& status) const;
   void WriteJournal() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  // Trims the mesh's change log to what its readers have not read yet (the simulation's, and
+  // the views someone watches), so that it follows the cut, not the clock.
+  void DiscardReadChanges() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   void Publish(View& view, std::uint64_t sequence, const TickReport& report)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   // Answers the snapshot requests of `view`'s level due at this tick's frame `sequence`.

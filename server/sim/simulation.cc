@@ -108,6 +108,16 @@ absl::Status Simulation::SetDisplacement(std::vector<Eigen::Vector3d> u) {
   return absl::OkStatus();
 }
 
+void Simulation::DiscardChangesBefore(mesh::ChangeMark keep) {
+  const auto older = [&](mesh::ChangeMark mark) {
+    if (mark.sequence < keep.sequence) keep = mark;
+  };
+  older(model_->synced());
+  if (const fem::SleepingVertices* s = sleeping(); s != nullptr) older(s->seen());
+  if (cutter_ != nullptr) older(cutter_->synced());
+  scene_.mesh.DiscardChangesBefore(keep);
+}
+
 absl::Status Simulation::FollowCut() {
   const std::vector<cut::MadeVertex> made = cutter_->TakeMadeVertices();
   // Slots of vertices the cutter made and removed again (temporary points) count too: the

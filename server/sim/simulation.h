@@ -74,6 +74,11 @@ class Simulation {
   // 2 / omega_max of the model as built (see fem::EstimateCriticalTimeStep).
   double critical_time_step() const { return critical_time_step_; }
 
+  // Forgets the mesh's changes before `keep` that none of the simulation's own readers (the
+  // model, sleeping vertices, the cutter) will read again: a caller with readers of its own
+  // passes the oldest of their marks. Without it the log grows with every pose. O(changes kept).
+  void DiscardChangesBefore(mesh::ChangeMark keep);
+
   // The automatic step of IMPLICIT_EULER and SYMPLECTIC_EULER_SUBSTEPPED: the haptic rate.
   static constexpr double kImplicitTimeStep = 1e-3;  // s
   // Its linear solve's tolerance (fem::ImplicitSolveOptions): a live progressive cut of
