@@ -7,51 +7,42 @@
 
 #include <atomic>
 #include <cmath>
+#include <functional>
 
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "sim/scene.h"
+#include "support/service_bar.h"
 
 namespace kerf::service {
 namespace {
 
 using ::testing::HasSubstr;
 
-constexpr char kBarScene[] = R"pb(
-  name: "test-bar"
-  mesh {
-    lattice {
-      cells_x: 4
-      cells_y: 2
-      cells_z: 2
-      size { x: 0.04 y: 0.02 z: 0.02 }
-    }
-  }
-  material { youngs_modulus: 5000 poisson_ratio: 0.45 density: 1000 mass_damping: 20 }
-)pb";
+using kerf::testing::BarBladePose;
 
-kerf::v1::BladePose Pose(double time, double y) {
-  kerf::v1::BladePose pose;
-  pose.set_time(time);
-  for (const double c : {0.0237, y, -0.005}) pose.add_tip(c);
-  for (const double c : {0.0237, y, 0.025}) pose.add_heel(c);
-  return pose;
+// A session on the service tests' bar, with `adjust` applied to the built scene.
+absl::StatusOr<std::unique_ptr<Session>> BarSession(
+    const std::string& id, const SessionOptions& options,
+    const std::function<void(sim::Scene&)>& adjust = nullptr) {
+  absl::StatusOr<sim::Scene> scene =
+      sim::BuildScene(*sim::ParseSceneText(kerf::testing::kServiceBarScene, "test"), ".");
+  if (!scene.ok()) return scene.status();
+  if (adjust) adjust(*scene);
+  return Session::Create({.id = id,
+                          .scene = *std::move(scene),
+                          .tokens = SessionTokens::Generate().first,
+                          .journal = nullptr,
+                          .recorded = {},
+                          .catch_up_to_tick = 0},
+                         options);
 }
 
 TEST(Session, APoseTheSimulationRefusesEndsTheCutWithWhyAndTheSessionGoesOn) {
-  absl::StatusOr<sim::Scene> scene = sim::BuildScene(*sim::ParseSceneText(kBarScene, "test"), ".");
-  ASSERT_TRUE(scene.ok()) << scene.status();
   // BuildScene refuses this fraction; a scene built in code meets it first when the cutter is
   // made, at the blade's first pose.
-  scene->snap_fraction = 0.7;
   absl::StatusOr<std::unique_ptr<Session>> session =
-      Session::Create({.id = "refusing",
-                       .scene = *std::move(scene),
-                       .tokens = SessionTokens::Generate().first,
-                       .journal = nullptr,
-                       .recorded = {},
-                       .catch_up_to_tick = 0},
-                      {});
+      BarSession("refusing", {}, [](sim::Scene& s) { s.snap_fraction = 0.7; });
   ASSERT_TRUE(session.ok()) << session.status();
 
   absl::Notification ended;
@@ -63,7 +54,7 @@ TEST(Session, APoseTheSimulationRefusesEndsTheCutWithWhyAndTheSessionGoesOn) {
         ended.Notify();
       });
   ASSERT_TRUE(cutter.ok()) << cutter.status();
-  ASSERT_TRUE((*session)->SubmitPose(Pose(0, 0.005)).ok());
+  ASSERT_TRUE((*session)->SubmitPose(BarBladePose(0, 0.005)).ok());
   ASSERT_TRUE(ended.WaitForNotificationWithTimeout(absl::Seconds(20)))
       << "the cutter's stream was not ended";
   EXPECT_EQ(why.code(), absl::StatusCode::kInvalidArgument);
@@ -72,7 +63,7 @@ TEST(Session, APoseTheSimulationRefusesEndsTheCutWithWhyAndTheSessionGoesOn) {
 
   // The blade is free, and a pose without a cut is refused as such.
   EXPECT_FALSE((*session)->Info().cutting());
-  EXPECT_EQ((*session)->SubmitPose(Pose(0.01, 0.005)).code(),
+  EXPECT_EQ((*session)->SubmitPose(BarBladePose(0.01, 0.005)).code(),
             absl::StatusCode::kFailedPrecondition);
   const double time = (*session)->Info().simulation_time();
   absl::SleepFor(absl::Milliseconds(50));
@@ -84,8 +75,6 @@ TEST(Session, APoseTheSimulationRefusesEndsTheCutWithWhyAndTheSessionGoesOn) {
 // cut (each pose's temporary pieces add and remove tets: without trimming, the log held
 // 3.5 million events by the end).
 TEST(Session, ALongTremblingCutKeepsTheChangeLogBounded) {
-  absl::StatusOr<sim::Scene> scene = sim::BuildScene(*sim::ParseSceneText(kBarScene, "test"), ".");
-  ASSERT_TRUE(scene.ok()) << scene.status();
   absl::Mutex mutex;
   std::size_t most_events = 0, ticks = 0;
   SessionOptions options;
@@ -95,14 +84,9 @@ TEST(Session, ALongTremblingCutKeepsTheChangeLogBounded) {
     most_events = std::max(most_events, s.mesh().change_log().retained_events());
     ++ticks;
   };
+  // The bar free, as cut here: nothing holds it.
   absl::StatusOr<std::unique_ptr<Session>> session =
-      Session::Create({.id = "trembling",
-                       .scene = *std::move(scene),
-                       .tokens = SessionTokens::Generate().first,
-                       .journal = nullptr,
-                       .recorded = {},
-                       .catch_up_to_tick = 0},
-                      options);
+      BarSession("trembling", options, [](sim::Scene& s) { s.conditions = {}; });
   ASSERT_TRUE(session.ok()) << session.status();
   std::atomic<bool> cutting = true;
   absl::StatusOr<std::shared_ptr<Subscription>> cutter = (*session)->BeginCut(
@@ -116,10 +100,7 @@ TEST(Session, ALongTremblingCutKeepsTheChangeLogBounded) {
     const double t = k / kRate;
     // 1.5 cm into the bar's 4 cm over the minute, trembling 1 mm at 10 Hz across the cut.
     const double x = 0.005 + 0.015 * t / kSeconds + 0.001 * std::sin(2 * M_PI * 10 * t);
-    kerf::v1::BladePose pose;
-    pose.set_time(t);
-    for (const double c : {x, 0.0103, -0.005}) pose.add_tip(c);
-    for (const double c : {x, 0.0103, 0.025}) pose.add_heel(c);
+    const kerf::v1::BladePose pose = BarBladePose(t, 0.0103, x);
     while ((*session)->Info().simulation_time() + 1.0 < t) absl::SleepFor(absl::Milliseconds(5));
     ASSERT_TRUE((*session)->SubmitPose(pose).ok()) << "pose " << k;
   }

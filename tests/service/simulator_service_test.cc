@@ -22,34 +22,14 @@
 #include "service/session_tokens.h"
 #include "service/sha256.h"
 #include "sim/scene.h"
+#include "support/service_bar.h"
 
 namespace kerf::service {
 namespace {
 
 using kerf::v1::Frame;
 
-// A 4 x 2 x 2 cm bar held at x = 0, offering every level. (No gravity: it would sag the free
-// end onto the blade's tip, and this test is about the service, not about cutting.)
-constexpr char kBarScene[] = R"pb(
-  name: "test-bar"
-  mesh {
-    lattice {
-      cells_x: 4
-      cells_y: 2
-      cells_z: 2
-      size { x: 0.04 y: 0.02 z: 0.02 }
-    }
-  }
-  material { youngs_modulus: 5000 poisson_ratio: 0.45 density: 1000 mass_damping: 20 }
-  displacements {
-    vertices {
-      half_space {
-        point { x: 0 }
-        normal { x: -1 }
-      }
-    }
-  }
-)pb";
+constexpr const char* kBarScene = kerf::testing::kServiceBarScene;
 
 // The tokens of the sessions the tests made, by session id.
 struct Tokens {
@@ -312,13 +292,7 @@ grpc::Status CutWith(kerf::v1::Simulator::Stub& stub, const std::string& session
   return DrainAndFinish(*stream);
 }
 
-kerf::v1::BladePose Pose(double time, double y) {
-  kerf::v1::BladePose pose;
-  pose.set_time(time);
-  for (const double c : {0.0237, y, -0.005}) pose.add_tip(c);
-  for (const double c : {0.0237, y, 0.025}) pose.add_heel(c);
-  return pose;
-}
+kerf::v1::BladePose Pose(double time, double y) { return kerf::testing::BarBladePose(time, y); }
 
 // The session as ListSessions shows it.
 kerf::v1::SessionInfo Listed(Server& server, const std::string& id) {
