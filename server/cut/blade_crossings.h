@@ -56,6 +56,8 @@ class BladeCrossings {
   // Keeps the current positions of `vertices` (those near the blade), for the next Find, and
   // lets the grid learn the tets the mesh added and removed. Call after a pose was applied.
   absl::Status Remember(const std::vector<mesh::VertexId>& vertices);
+  // Whether the remembered positions include `v`'s.
+  bool Remembers(mesh::VertexId v) const { return previous_.contains(mesh::Index(v)); }
 
   // Whether the blade at `pose` meets the tet (its inside or boundary), on current positions.
   bool BladeMeets(const mesh::TetVertices& tet, const BladePose& pose) const;

@@ -134,6 +134,15 @@ class CrackCutter {
   // The oldest point of the mesh's change log the cutter will read again.
   mesh::ChangeMark synced() const { return crossings_.synced(); }
 
+  // The ids the cutter names, live or removed: tets the blade opened, the tissue's tets pieces
+  // stand in for, points, their origins and copies. The mesh must not give a removed one of
+  // them to a new element (see TetMesh::ReuseIdsRemovedBefore). O(the cutter's state).
+  struct HeldIds {
+    absl::flat_hash_set<mesh::VertexId> vertices;
+    absl::flat_hash_set<mesh::TetId> tets;
+  };
+  HeldIds Held() const;
+
   CutMode mode() const { return mode_; }
   const CutStatistics& statistics() const { return statistics_; }
   const PoseSummary& last_pose() const { return last_pose_; }
@@ -389,6 +398,8 @@ class CrackCutter {
                                  const Eigen::Vector4d& weights);
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& origins,
                             const Eigen::Vector4d& weights);
+  // Removes a point the cut made, with its copies and its recipe, if no tet uses them.
+  bool RemovePointIfUnused(mesh::VertexId point);
   // Moves `v` (a point the cut made, or a copy of one) to `weights` on `origins` as the tets
   // around it name them, so it takes its own side's place and state; a copy whose tets lack
   // them (a chip the crack cut off) keeps its displacement.

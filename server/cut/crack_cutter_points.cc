@@ -187,4 +187,10 @@ CrackCutter::Lengths CrackCutter::LengthsOf(std::span<const VertexId> vertices) 
   return lengths;
 }
 
+bool CrackCutter::RemovePointIfUnused(VertexId point) {
+  if (!parting_.RemoveIfUnused(mesh_, point)) return false;
+  recipe_.erase(point);
+  return true;
+}
+
 }  // namespace kerf::cut

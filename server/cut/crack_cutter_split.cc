@@ -73,14 +73,14 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
     for (const auto& [key, fraction] : in.edges) {
       const auto point = edge_points_.find(key);
       if (point != edge_points_.end() && point->second.vertex != kNoVertex &&
-          parting_.RemoveIfUnused(mesh_, point->second.vertex)) {
+          RemovePointIfUnused(point->second.vertex)) {
         point->second.vertex = kNoVertex;
       }
     }
   }
   // Temporary points no split uses this pose go.
   for (auto it = temporary_.begin(); it != temporary_.end();) {
-    if (!temporary_used_.contains(it->first) && parting_.RemoveIfUnused(mesh_, it->second)) {
+    if (!temporary_used_.contains(it->first) && RemovePointIfUnused(it->second)) {
       temporary_.erase(it++);
     } else {
       ++it;

@@ -78,9 +78,17 @@ PartingChanges VertexParting::Repart(mesh::TetMesh* mesh, const std::vector<Vert
       changes.removed.push_back(id);
       std::vector<VertexId>& copies = copies_[o];
       copies.erase(std::find(copies.begin(), copies.end(), id));
+      origin_[mesh::Index(id)] = kNoOrigin;  // no copy any more: its id may name a new vertex
     }
   }
   return changes;
+}
+
+void VertexParting::AddNamedVertices(absl::flat_hash_set<VertexId>* named) const {
+  for (const auto& [origin, copies] : copies_) {
+    named->insert(origin);
+    named->insert(copies.begin(), copies.end());
+  }
 }
 
 VertexId VertexParting::IdIn(const mesh::TetMesh& mesh, TetId t, VertexId origin) const {

@@ -53,6 +53,8 @@ class VertexParting {
   }
   // The origin and its live copies.
   std::vector<mesh::VertexId> Ids(mesh::VertexId origin) const;
+  // Every origin with copies, and the copies. O(copies).
+  void AddNamedVertices(absl::flat_hash_set<mesh::VertexId>* named) const;
   // The live tets using the origin or one of its copies.
   std::vector<mesh::TetId> TetsAround(const mesh::TetMesh& mesh, mesh::VertexId origin) const;
   // The key of a face by its vertices' origins.

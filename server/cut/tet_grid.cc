@@ -117,6 +117,7 @@ absl::Status TetGrid::RefreshTopology() {
   for (std::size_t i = registered_at_.size(); i < current.size(); ++i) {
     registered_at_.push_back(current[i]);  // new vertices start at their current position
   }
+  for (const VertexId v : changes->added_vertices) registered_at_[Index(v)] = current[Index(v)];
   for (const TetId t : changes->added_tets) {
     Register(t);
     ++last_refresh_count_;

@@ -34,10 +34,11 @@ void SleepingVertices::Refresh(const BoundaryConditions& bc,
   if (!changes.ok()) {  // the log was trimmed past what this object saw: wake everything
     for (std::uint32_t i = 0; i < n; ++i) Wake(i);
   } else {
-    for (const std::vector<mesh::TetId>* tets : {&changes->added_tets, &changes->removed_tets}) {
-      for (const mesh::TetId t : *tets) {
-        for (const mesh::VertexId v : mesh.tet_even_if_removed(t)) Wake(Index(v));
-      }
+    for (const mesh::TetId t : changes->added_tets) {
+      for (const mesh::VertexId v : mesh.tet(t)) Wake(Index(v));
+    }
+    for (const mesh::TetVertices& corners : changes->removed_tet_corners) {
+      for (const mesh::VertexId v : corners) Wake(Index(v));
     }
     for (const mesh::VertexId moved : changes->moved_vertices) {
       for (const mesh::TetId t : mesh.TetsAround(moved)) {

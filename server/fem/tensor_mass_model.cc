@@ -18,10 +18,9 @@ using mesh::VertexId;
 std::uint64_t EdgeKey(VertexId a, VertexId b) { return (std::uint64_t{Index(a)} << 32) | Index(b); }
 
 std::array<Eigen::Vector3d, 4> RestCorners(const mesh::TetMesh& mesh, TetId t) {
-  // Corners of a removed tet stay readable: the mesh keeps dead slots' last values.
-  const mesh::TetVertices& v = mesh.tet_even_if_removed(t);
-  const auto rest = mesh.rest_positions();
-  return {rest[Index(v[0])], rest[Index(v[1])], rest[Index(v[2])], rest[Index(v[3])]};
+  const mesh::TetVertices& v = mesh.tet(t);
+  return {mesh.rest_position(v[0]), mesh.rest_position(v[1]), mesh.rest_position(v[2]),
+          mesh.rest_position(v[3])};
 }
 
 absl::Status CheckRestVolumeNonZero(const mesh::TetMesh& mesh, TetId t) {
@@ -52,7 +51,7 @@ absl::StatusOr<TensorMassModel> TensorMassModel::Create(
   model.GrowToMesh();
   std::vector<TetId> tets;
   for (const TetId t : mesh.tets()) {
-    model.Accumulate(t, +1);
+    model.Accumulate(t, mesh.tet(t), +1);
     tets.push_back(t);
   }
   model.UpdateActive(tets, {});
@@ -80,21 +79,26 @@ absl::Status TensorMassModel::SyncWithMesh() {
     }
   }
   GrowToMesh();
-  for (const TetId t : changes->removed_tets) Accumulate(t, -1);
-  for (const TetId t : reshaped) Accumulate(t, -1);
-  for (const TetId t : reshaped) Accumulate(t, +1);
-  for (const TetId t : changes->added_tets) Accumulate(t, +1);
-  // A vertex no tet uses any more (a temporary point of a progressive cut) has no mass or
-  // stiffness: exactly, not the rounding left by adding and taking away.
-  std::vector<VertexId> emptied;
-  for (const TetId t : changes->removed_tets) {
-    for (const VertexId v : mesh_->tet_even_if_removed(t)) {
+  for (std::size_t i = 0; i < changes->removed_tets.size(); ++i) {
+    Accumulate(changes->removed_tets[i], changes->removed_tet_corners[i], -1);
+  }
+  for (const TetId t : reshaped) Accumulate(t, mesh_->tet(t), -1);
+  for (const TetId t : reshaped) Accumulate(t, mesh_->tet(t), +1);
+  // A vertex no tet uses any more (a temporary point of a progressive cut), or removed and its
+  // id reused, has no mass or stiffness: exactly, not the rounding left by adding and taking
+  // away.
+  std::vector<VertexId> emptied = changes->removed_vertices;
+  for (const mesh::TetVertices& corners : changes->removed_tet_corners) {
+    for (const VertexId v : corners) {
       if (mesh_->IsAlive(v) && !mesh_->TetsAround(v).empty()) continue;
-      masses_[Index(v)] = 0;
-      vertex_tensors_[Index(v)].setZero();
       emptied.push_back(v);
     }
   }
+  for (const VertexId v : emptied) {
+    masses_[Index(v)] = 0;
+    vertex_tensors_[Index(v)].setZero();
+  }
+  for (const TetId t : changes->added_tets) Accumulate(t, mesh_->tet(t), +1);
   UpdateActive(changes->added_tets, emptied);
   synced_ = mesh_->change_log().Mark();
   return absl::OkStatus();
@@ -120,7 +124,7 @@ void TensorMassModel::UpdateActive(std::span<const TetId> added,
   }
   const std::size_t old_end = active_.size();
   for (const TetId t : added) {
-    for (const VertexId v : mesh_->tet_even_if_removed(t)) {
+    for (const VertexId v : mesh_->tet(t)) {
       if (is_active_[Index(v)] || masses_[Index(v)] <= 0) continue;
       is_active_[Index(v)] = true;
       active_.push_back(Index(v));
@@ -131,8 +135,7 @@ void TensorMassModel::UpdateActive(std::span<const TetId> added,
                      active_.end());
 }
 
-void TensorMassModel::Accumulate(TetId t, double sign) {
-  const mesh::TetVertices& v = mesh_->tet_even_if_removed(t);
+void TensorMassModel::Accumulate(TetId t, const mesh::TetVertices& v, double sign) {
   if (added_with_.size() <= Index(t)) {
     added_with_.resize(Index(t) + 1);
     added_scale_.resize(Index(t) + 1);

@@ -119,9 +119,9 @@ class TensorMassModel {
   // Updates active_ after tets were added (their vertices become active) and vertices lost
   // their last tet (`emptied`). O(active + changed).
   void UpdateActive(std::span<const mesh::TetId> added, std::span<const mesh::VertexId> emptied);
-  // Adds (sign +1, at its rest corners now) or subtracts (sign -1, at the corners it was added
-  // with) the contributions of tet t.
-  void Accumulate(mesh::TetId t, double sign);
+  // Adds (sign +1, at its rest corners now) or subtracts (sign -1, at the rest positions it was
+  // added with) the contributions of tet t on corners v (those it had when added).
+  void Accumulate(mesh::TetId t, const mesh::TetVertices& v, double sign);
 
   const mesh::TetMesh* mesh_;
   Material material_;

@@ -61,10 +61,10 @@ absl::Status CutMeshCheck::Check() {
   absl::flat_hash_set<std::uint32_t> dirty;
   std::vector<TetId> tets = changes->added_tets;
   std::vector<VertexId> vertices = changes->added_vertices;
-  for (const TetId t : changes->removed_tets) {
-    const TetVertices& corners = cut_->tet_even_if_removed(t);
+  for (std::size_t i = 0; i < changes->removed_tets.size(); ++i) {
+    const TetVertices& corners = changes->removed_tet_corners[i];
     vertices.insert(vertices.end(), corners.begin(), corners.end());
-    Untrack(t, &dirty);
+    Untrack(changes->removed_tets[i], &dirty);
   }
   for (const TetId t : changes->added_tets) Track(t, &dirty);
   for (const VertexId v : changes->moved_vertices) {

@@ -1,6 +1,7 @@
 #include "mesh/mesh_change_log.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
@@ -9,16 +10,37 @@
 namespace kerf::mesh {
 namespace {
 
-// Net effect of the events on one id: +1 added, -1 removed, 0 added and removed again.
-// Ids are never reused, so an id is added at most once and removed at most once.
-template <typename Id>
-std::vector<Id> SortedIdsWithNet(const absl::flat_hash_map<std::uint32_t, int>& net, int sign) {
-  std::vector<Id> ids;
-  for (const auto& [id, value] : net) {
-    if (value == sign) ids.push_back(static_cast<Id>(id));
+// One id's life over an interval: whether it was alive at the start (its first event is a
+// removal) and is alive at the end (its last event is an addition), and the corners of its first
+// removal (tets only).
+struct Life {
+  bool alive_before = false;
+  bool alive_after = false;
+  TetVertices corners_before{};
+};
+
+void Record(absl::flat_hash_map<std::uint32_t, Life>& lives, std::uint32_t id, bool added,
+            const TetVertices& corners) {
+  const auto [it, first] = lives.try_emplace(id);
+  if (first) {
+    it->second.alive_before = !added;
+    it->second.corners_before = corners;
   }
-  std::sort(ids.begin(), ids.end());
-  return ids;
+  it->second.alive_after = added;
+}
+
+// The ids alive at the end and not at the start, or alive at the start and not at the end; an id
+// alive at both ends with events between was removed and its id taken by a new element: both.
+template <typename Id>
+void Net(const absl::flat_hash_map<std::uint32_t, Life>& lives, std::vector<Id>* added,
+         std::vector<std::pair<Id, TetVertices>>* removed) {
+  for (const auto& [id, life] : lives) {
+    if (life.alive_after) added->push_back(static_cast<Id>(id));
+    if (life.alive_before) removed->push_back({static_cast<Id>(id), life.corners_before});
+  }
+  std::sort(added->begin(), added->end());
+  std::sort(removed->begin(), removed->end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
 }
 
 }  // namespace
@@ -33,22 +55,18 @@ absl::StatusOr<MeshChanges> MeshChangeLog::ChangesSince(ChangeMark since) const 
     return absl::OutOfRangeError(absl::StrCat(
         "sequence ", since.sequence, " is past the end of the log (", Mark().sequence, ")"));
   }
-  absl::flat_hash_map<std::uint32_t, int> vertex_net, tet_net;
+  absl::flat_hash_map<std::uint32_t, Life> vertex_lives, tet_lives;
   absl::flat_hash_set<std::uint32_t> moved;
   for (std::size_t i = since.sequence - first_kept_; i < events_.size(); ++i) {
     const Event& e = events_[i];
     switch (e.kind) {
       case Kind::kAddVertex:
-        vertex_net[e.id] += 1;
-        break;
       case Kind::kRemoveVertex:
-        vertex_net[e.id] -= 1;
+        Record(vertex_lives, e.id, e.kind == Kind::kAddVertex, {});
         break;
       case Kind::kAddTet:
-        tet_net[e.id] += 1;
-        break;
       case Kind::kRemoveTet:
-        tet_net[e.id] -= 1;
+        Record(tet_lives, e.id, e.kind == Kind::kAddTet, e.corners);
         break;
       case Kind::kMoveVertex:
         moved.insert(e.id);
@@ -56,13 +74,18 @@ absl::StatusOr<MeshChanges> MeshChangeLog::ChangesSince(ChangeMark since) const 
     }
   }
   MeshChanges changes;
-  changes.added_vertices = SortedIdsWithNet<VertexId>(vertex_net, +1);
-  changes.removed_vertices = SortedIdsWithNet<VertexId>(vertex_net, -1);
-  changes.added_tets = SortedIdsWithNet<TetId>(tet_net, +1);
-  changes.removed_tets = SortedIdsWithNet<TetId>(tet_net, -1);
+  std::vector<std::pair<VertexId, TetVertices>> removed_vertices;
+  Net(vertex_lives, &changes.added_vertices, &removed_vertices);
+  for (const auto& [v, unused] : removed_vertices) changes.removed_vertices.push_back(v);
+  std::vector<std::pair<TetId, TetVertices>> removed_tets;
+  Net(tet_lives, &changes.added_tets, &removed_tets);
+  for (const auto& [t, corners] : removed_tets) {
+    changes.removed_tets.push_back(t);
+    changes.removed_tet_corners.push_back(corners);
+  }
   for (const std::uint32_t id : moved) {
     // One added or removed in the interval is listed as such.
-    if (!vertex_net.contains(id)) changes.moved_vertices.push_back(static_cast<VertexId>(id));
+    if (!vertex_lives.contains(id)) changes.moved_vertices.push_back(static_cast<VertexId>(id));
   }
   std::sort(changes.moved_vertices.begin(), changes.moved_vertices.end());
   return changes;

@@ -2,9 +2,12 @@
 //
 // Every addition and removal of a vertex or tet, and every move of a vertex's rest position,
 // is appended as an event with a sequence number. A consumer takes a Mark, and later asks for the
-// net changes since it: an element added and removed again within the interval appears in neither
-// list. Events older than a mark can be discarded to bound memory; asking for changes since a
-// discarded point is an error, on which a consumer falls back to a full snapshot.
+// net changes since it, judged by each id's life: an id alive at the mark and alive now that was
+// removed in between (its id reused by a new element, see TetMesh) is in both lists, removed and
+// added; one added and removed again within the interval is in neither. A removed tet's event
+// keeps its corners, so a consumer learns what left even after its id was reused. Events older
+// than a mark can be discarded to bound memory; asking for changes since a discarded point is an
+// error, on which a consumer falls back to a full snapshot.
 #pragma once
 
 #include <cstdint>
@@ -27,6 +30,8 @@ struct MeshChanges {
   std::vector<VertexId> removed_vertices;
   std::vector<TetId> added_tets;
   std::vector<TetId> removed_tets;
+  // The corners each of removed_tets had at the start of the interval, in the same order.
+  std::vector<TetVertices> removed_tet_corners;
   // Vertices neither added nor removed that took a new rest position (TetMesh::MoveVertex).
   std::vector<VertexId> moved_vertices;
 
@@ -42,7 +47,9 @@ class MeshChangeLog {
   void RecordAddedVertex(VertexId v) { Append(Kind::kAddVertex, Index(v)); }
   void RecordRemovedVertex(VertexId v) { Append(Kind::kRemoveVertex, Index(v)); }
   void RecordAddedTet(TetId t) { Append(Kind::kAddTet, Index(t)); }
-  void RecordRemovedTet(TetId t) { Append(Kind::kRemoveTet, Index(t)); }
+  void RecordRemovedTet(TetId t, const TetVertices& corners) {
+    Append(Kind::kRemoveTet, Index(t), corners);
+  }
   void RecordMovedVertex(VertexId v) { Append(Kind::kMoveVertex, Index(v)); }
 
   // The current end of the log.
@@ -63,9 +70,12 @@ class MeshChangeLog {
   struct Event {
     Kind kind;
     std::uint32_t id;
+    TetVertices corners;  // a removed tet's; unused otherwise
   };
 
-  void Append(Kind kind, std::uint32_t id) { events_.push_back({kind, id}); }
+  void Append(Kind kind, std::uint32_t id, const TetVertices& corners = {}) {
+    events_.push_back({kind, id, corners});
+  }
 
   std::uint64_t first_kept_ = 0;  // sequence number of events_[0]
   std::vector<Event> events_;

@@ -1,5 +1,6 @@
-// Stable identifiers of mesh elements. An id is issued once in a mesh's life and never reused,
-// so clients can refer to an element across any number of changes (see TetMesh).
+// Stable identifiers of mesh elements. An id names one element for as long as it lives, so
+// clients can refer to an element across any number of changes; after its removal the id may
+// name a new element (see TetMesh).
 #pragma once
 
 #include <array>
@@ -10,7 +11,8 @@ namespace kerf::mesh {
 enum class VertexId : std::uint32_t {};
 enum class TetId : std::uint32_t {};
 
-// The dense index behind an id: ids are issued 0, 1, 2, ... so this indexes per-element arrays.
+// The dense index behind an id: ids are issued 0, 1, 2, ... (and freed ones again), so this
+// indexes per-element arrays.
 constexpr std::uint32_t Index(VertexId v) { return static_cast<std::uint32_t>(v); }
 constexpr std::uint32_t Index(TetId t) { return static_cast<std::uint32_t>(t); }
 

@@ -31,11 +31,20 @@ VertexId TetMesh::AddVertex(const Eigen::Vector3d& rest_position,
                             const Eigen::Vector3d& current_position) {
   // Either may be one of this mesh's own positions: copied before the lists grow.
   const Eigen::Vector3d rest = rest_position, current = current_position;
-  const auto v = static_cast<VertexId>(rest_.size());
-  rest_.push_back(rest);
-  current_.push_back(current);
-  stars_.emplace_back();
-  vertex_alive_.push_back(true);
+  VertexId v;
+  if (free_vertices_.empty()) {
+    v = static_cast<VertexId>(rest_.size());
+    rest_.push_back(rest);
+    current_.push_back(current);
+    stars_.emplace_back();
+    vertex_alive_.push_back(true);
+  } else {
+    v = static_cast<VertexId>(free_vertices_.back());
+    free_vertices_.pop_back();
+    rest_[Index(v)] = rest;
+    current_[Index(v)] = current;
+    vertex_alive_[Index(v)] = true;
+  }
   ++vertex_count_;
   change_log_.RecordAddedVertex(v);
   return v;
@@ -51,6 +60,7 @@ absl::Status TetMesh::RemoveVertex(VertexId v) {
   stars_[Index(v)].clear();
   stars_[Index(v)].shrink_to_fit();  // release any heap storage
   --vertex_count_;
+  waiting_.push_back({change_log_.Mark().sequence, Index(v), false});
   change_log_.RecordRemovedVertex(v);
   return absl::OkStatus();
 }
@@ -71,9 +81,17 @@ absl::StatusOr<TetId> TetMesh::AddTet(const TetVertices& vertices) {
           absl::StrCat("cannot add a tet on vertex ", Index(v), ": it is not alive"));
     }
   }
-  const auto t = static_cast<TetId>(tets_.size());
-  tets_.push_back(vertices);
-  tet_alive_.push_back(true);
+  TetId t;
+  if (free_tets_.empty()) {
+    t = static_cast<TetId>(tets_.size());
+    tets_.push_back(vertices);
+    tet_alive_.push_back(true);
+  } else {
+    t = static_cast<TetId>(free_tets_.back());
+    free_tets_.pop_back();
+    tets_[Index(t)] = vertices;
+    tet_alive_[Index(t)] = true;
+  }
   ++tet_count_;
   for (int i = 0; i < 4; ++i) {
     if (IsFirstOccurrence(vertices, i)) stars_[Index(vertices[i])].push_back(t);
@@ -95,8 +113,33 @@ absl::Status TetMesh::RemoveTet(TetId t) {
   }
   tet_alive_[Index(t)] = false;
   --tet_count_;
-  change_log_.RecordRemovedTet(t);
+  waiting_.push_back({change_log_.Mark().sequence, Index(t), true});
+  change_log_.RecordRemovedTet(t, vertices);
   return absl::OkStatus();
+}
+
+void TetMesh::ReuseIdsRemovedBefore(ChangeMark mark,
+                                    const std::function<bool(VertexId)>& vertex_held,
+                                    const std::function<bool(TetId)>& tet_held) {
+  std::vector<Waiting> still;
+  std::size_t i = 0;
+  for (; i < waiting_.size() && waiting_[i].sequence < mark.sequence; ++i) {
+    const Waiting& w = waiting_[i];
+    KERF_CHECK(w.tet ? !tet_alive_[w.index] : !vertex_alive_[w.index]);
+    const bool held =
+        w.tet ? tet_held(static_cast<TetId>(w.index)) : vertex_held(static_cast<VertexId>(w.index));
+    if (held) {
+      still.push_back(w);
+    } else {
+      (w.tet ? free_tets_ : free_vertices_).push_back(w.index);
+    }
+  }
+  still.insert(still.end(), waiting_.begin() + static_cast<std::ptrdiff_t>(i), waiting_.end());
+  waiting_ = std::move(still);
+  // The smallest free id goes first, whatever order the ids were removed in (a caller may remove
+  // in a hash map's order): so the ids a history of changes issues depend on that history only.
+  std::sort(free_vertices_.begin(), free_vertices_.end(), std::greater<>());
+  std::sort(free_tets_.begin(), free_tets_.end(), std::greater<>());
 }
 
 TetMesh::TetList TetMesh::TetsAroundEdge(VertexId a, VertexId b) const {

@@ -4,10 +4,12 @@
 // elastic model measures strain from) and a current position (the deformed shape). Each tet
 // is four vertex ids.
 //
-// Ids: vertices and tets get ids 0, 1, 2, ... in order of creation and an id is never
-// reused, so per-element data can live in arrays indexed by Index(id), and removed elements
-// leave a dead slot. Memory grows with the number of elements ever created, which is the
-// element count plus what cuts removed.
+// Ids: vertices and tets get ids 0, 1, 2, ... in order of creation, so per-element data can live
+// in arrays indexed by Index(id). A removed element leaves a dead slot that keeps its last
+// positions until its owner releases the id (ReuseIdsRemovedBefore, once every reader that needs
+// the old data has read past the removal); a later addition then takes the released id again.
+// So memory follows the elements alive and those waiting, not every element ever created; and
+// readers of the change log see a reused id as removed and added.
 //
 // Adjacency: the mesh stores the star of every vertex (the tets that use it). The tets
 // around an edge or a face are the tets in the star of one of its vertices that use the
@@ -18,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <iterator>
 #include <span>
 #include <vector>
@@ -121,7 +124,8 @@ class TetMesh {
     current_[Index(v)] = position;
   }
 
-  // All positions indexed by Index(id). A removed vertex's slot keeps its last positions.
+  // All positions indexed by Index(id). A removed vertex's slot keeps its last positions until
+  // its id is reused.
   std::span<const Eigen::Vector3d> rest_positions() const { return rest_; }
   std::span<const Eigen::Vector3d> current_positions() const { return current_; }
   std::span<Eigen::Vector3d> mutable_current_positions() { return current_; }
@@ -147,12 +151,6 @@ class TetMesh {
     KERF_CHECK(IsAlive(t));
     return tets_[Index(t)];
   }
-  // The corners of any tet ever added, live or removed: a removed tet's slot keeps them, so
-  // data attached to it can be taken back exactly (checked: t was issued).
-  const TetVertices& tet_even_if_removed(TetId t) const {
-    KERF_CHECK(Index(t) < tets_.size());
-    return tets_[Index(t)];
-  }
 
   // --- Adjacency -----------------------------------------------------------------------------
 
@@ -176,6 +174,18 @@ class TetMesh {
   // for them gets OUT_OF_RANGE). O(changes kept).
   void DiscardChangesBefore(ChangeMark mark) { change_log_.DiscardBefore(mark); }
 
+  // --- Reuse of ids --------------------------------------------------------------------------
+
+  // Frees for reuse the ids of the vertices and tets removed before `mark`, except those the
+  // predicates hold (a caller still naming them); held ids wait for a later call. Whoever calls
+  // it promises that no reader still needs a freed slot's last positions. The next additions take
+  // the freed ids, smallest first. O(ids waiting) predicate calls and O(F log F) in the F free.
+  void ReuseIdsRemovedBefore(ChangeMark mark, const std::function<bool(VertexId)>& vertex_held,
+                             const std::function<bool(TetId)>& tet_held);
+  // Removed ids not yet freed, and freed ids not yet taken again.
+  std::size_t ids_waiting() const { return waiting_.size(); }
+  std::size_t ids_free() const { return free_vertices_.size() + free_tets_.size(); }
+
  private:
   std::vector<Eigen::Vector3d> rest_;
   std::vector<Eigen::Vector3d> current_;
@@ -188,6 +198,15 @@ class TetMesh {
   std::size_t tet_count_ = 0;
 
   MeshChangeLog change_log_;
+  // Removed ids in order of removal, with the change log's sequence number of their removal.
+  struct Waiting {
+    std::uint64_t sequence;
+    std::uint32_t index;
+    bool tet;
+  };
+  std::vector<Waiting> waiting_;
+  std::vector<std::uint32_t> free_vertices_;
+  std::vector<std::uint32_t> free_tets_;
 };
 
 // True if the tet has vertex v as a corner.

@@ -76,7 +76,7 @@ void AppendFloat32(const Eigen::Vector3d& v, std::string* out) {
 LevelView::LevelView(kerf::v1::Level level, const sim::Simulation& simulation)
     : level_(level),
       simulation_(&simulation),
-      original_vertex_bound_(simulation.mesh().vertex_index_bound()) {}
+      original_vertex_bound_(simulation.tissue_vertex_bound()) {}
 
 kerf::v1::Frame LevelView::Advance(const TickReport& report, std::uint64_t sequence) {
   KERF_CHECK(sequence > sequence_);
@@ -130,12 +130,19 @@ void LevelView::UpdateTets(kerf::v1::Frame* frame) {
   if (changes.ok()) {
     removed = std::move(changes->removed_tets);
     added = std::move(changes->added_tets);
-  } else {  // no history to read: compare with the mesh
+  } else {  // no history to read: compare with the mesh (an id reused has other corners)
+    const auto same = [&](const Element& e, TetId t) {
+      for (int k = 0; k < 4; ++k) {
+        if (e.vertices[k] != Index(m.tet(t)[k])) return false;
+      }
+      return true;
+    };
     for (const auto& [id, element] : elements_) {
-      if (!m.IsAlive(TetId{id})) removed.push_back(TetId{id});
+      if (!m.IsAlive(TetId{id}) || !same(element, TetId{id})) removed.push_back(TetId{id});
     }
     for (const TetId t : m.tets()) {
-      if (!elements_.contains(Index(t))) added.push_back(t);
+      const auto it = elements_.find(Index(t));
+      if (it == elements_.end() || !same(it->second, t)) added.push_back(t);
     }
     std::sort(removed.begin(), removed.end());
   }
@@ -192,7 +199,7 @@ void LevelView::UpdateSurface(kerf::v1::Frame* frame) {
     }
   };
   if (changes.ok()) {
-    for (const TetId t : changes->removed_tets) add_faces_of(m.tet_even_if_removed(t));
+    for (const mesh::TetVertices& corners : changes->removed_tet_corners) add_faces_of(corners);
     for (const TetId t : changes->added_tets) add_faces_of(m.tet(t));
   } else {
     for (const auto& [key, id] : triangle_of_face_) candidates.push_back(key);

@@ -14,6 +14,8 @@ namespace kerf::sim {
 
 absl::StatusOr<std::unique_ptr<Simulation>> Simulation::Create(Scene scene) {
   std::unique_ptr<Simulation> sim(new Simulation(std::move(scene)));
+  sim->tissue_vertex_bound_ = sim->scene_.mesh.vertex_index_bound();
+  sim->tissue_tet_bound_ = sim->scene_.mesh.tet_index_bound();
   absl::StatusOr<fem::TensorMassModel> model =
       fem::TensorMassModel::Create(sim->scene_.mesh, sim->scene_.material);
   if (!model.ok()) return model.status();
@@ -109,13 +111,29 @@ absl::Status Simulation::SetDisplacement(std::vector<Eigen::Vector3d> u) {
 }
 
 void Simulation::DiscardChangesBefore(mesh::ChangeMark keep) {
-  const auto older = [&](mesh::ChangeMark mark) {
-    if (mark.sequence < keep.sequence) keep = mark;
+  mesh::ChangeMark read = scene_.mesh.change_log().Mark();  // by all of the simulation's readers
+  const auto older = [](mesh::ChangeMark mark, mesh::ChangeMark& oldest) {
+    if (mark.sequence < oldest.sequence) oldest = mark;
   };
-  older(model_->synced());
-  if (const fem::SleepingVertices* s = sleeping(); s != nullptr) older(s->seen());
-  if (cutter_ != nullptr) older(cutter_->synced());
+  older(model_->synced(), read);
+  if (const fem::SleepingVertices* s = sleeping(); s != nullptr) older(s->seen(), read);
+  if (cutter_ != nullptr) older(cutter_->synced(), read);
+  ReuseIdsRemovedBefore(read);
+  older(read, keep);
   scene_.mesh.DiscardChangesBefore(keep);
+}
+
+void Simulation::ReuseIdsRemovedBefore(mesh::ChangeMark read) {
+  if (scene_.mesh.ids_waiting() < std::max(kIdReuseBatch, 2 * ids_held_)) return;
+  const cut::CrackCutter::HeldIds held =
+      cutter_ != nullptr ? cutter_->Held() : cut::CrackCutter::HeldIds{};
+  scene_.mesh.ReuseIdsRemovedBefore(
+      read,
+      [&](mesh::VertexId v) {
+        return mesh::Index(v) < tissue_vertex_bound_ || held.vertices.contains(v);
+      },
+      [&](mesh::TetId t) { return mesh::Index(t) < tissue_tet_bound_ || held.tets.contains(t); });
+  ids_held_ = scene_.mesh.ids_waiting();
 }
 
 absl::Status Simulation::FollowCut() {

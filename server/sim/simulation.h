@@ -77,7 +77,17 @@ class Simulation {
   // Forgets the mesh's changes before `keep` that none of the simulation's own readers (the
   // model, sleeping vertices, the cutter) will read again: a caller with readers of its own
   // passes the oldest of their marks. Without it the log grows with every pose. O(changes kept).
+  // Then frees for reuse the ids of elements removed before what those readers have read, but
+  // the scene's own and those the cutter names, once enough wait that the cutter's scan pays
+  // (every kIdReuseBatch removals at least): without it dead slots pile up pose after pose.
+  // What is freed follows only from the cut's history, so a replay reuses ids alike; readers of
+  // the log that lag (a session's views) learn a removed tet's corners from the log itself.
   void DiscardChangesBefore(mesh::ChangeMark keep);
+  static constexpr std::size_t kIdReuseBatch = 1024;
+
+  // The scene's own vertices have ids below this and keep them; those at or past it were made
+  // by cuts.
+  std::uint32_t tissue_vertex_bound() const { return tissue_vertex_bound_; }
 
   // The automatic step of IMPLICIT_EULER and SYMPLECTIC_EULER_SUBSTEPPED: the haptic rate.
   static constexpr double kImplicitTimeStep = 1e-3;  // s
@@ -91,6 +101,7 @@ class Simulation {
   bool implicit() const { return scene_.method == kerf::v1::Integration::IMPLICIT_EULER; }
   void UpdateCurrentPositions();
   absl::Status FollowCut();
+  void ReuseIdsRemovedBefore(mesh::ChangeMark read);
 
   Scene scene_;  // owns the mesh the model points to; Simulation is not movable
   std::unique_ptr<fem::TensorMassModel> model_;
@@ -101,6 +112,9 @@ class Simulation {
   double time_step_ = 0;
   double critical_time_step_ = 0;
   std::unique_ptr<cut::CrackCutter> cutter_;
+  std::uint32_t tissue_vertex_bound_ = 0;
+  std::uint32_t tissue_tet_bound_ = 0;
+  std::size_t ids_held_ = 0;  // ids left waiting by the last reuse
 };
 
 }  // namespace kerf::sim

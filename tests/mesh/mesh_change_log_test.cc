@@ -60,6 +60,33 @@ TEST(MeshChangeLog, ReportsVerticesMovedButNotAddedOrRemoved) {
   EXPECT_EQ(mesh.MoveVertex(b, {0, 0, 0}, {0, 0, 0}).code(), absl::StatusCode::kNotFound);
 }
 
+// An id removed and given to a new element is both removed (with the corners it had at the mark)
+// and added; one added and removed again within the interval, whatever its id did before the
+// interval, is only what its life at the two ends says.
+TEST(MeshChangeLog, AReusedIdIsRemovedAndAddedWithTheCornersItHadAtTheMark) {
+  MeshChangeLog log;
+  const TetVertices first = {VertexId{0}, VertexId{1}, VertexId{2}, VertexId{3}};
+  const TetVertices second = {VertexId{0}, VertexId{1}, VertexId{2}, VertexId{4}};
+  log.RecordAddedTet(TetId{0});
+  log.RecordAddedTet(TetId{1});
+  const ChangeMark mark = log.Mark();
+  log.RecordRemovedTet(TetId{0}, first);
+  log.RecordAddedTet(TetId{0});
+  log.RecordRemovedTet(TetId{0}, second);
+  log.RecordAddedTet(TetId{0});
+  log.RecordRemovedTet(TetId{1}, second);  // removed, reused, removed again: only removed
+  log.RecordAddedTet(TetId{1});
+  log.RecordRemovedTet(TetId{1}, first);
+  log.RecordAddedTet(TetId{2});  // added, removed, added: only added
+  log.RecordRemovedTet(TetId{2}, first);
+  log.RecordAddedTet(TetId{2});
+  absl::StatusOr<MeshChanges> changes = log.ChangesSince(mark);
+  ASSERT_TRUE(changes.ok());
+  EXPECT_THAT(changes->removed_tets, ElementsAre(TetId{0}, TetId{1}));
+  EXPECT_THAT(changes->removed_tet_corners, ElementsAre(first, second));
+  EXPECT_THAT(changes->added_tets, ElementsAre(TetId{0}, TetId{2}));
+}
+
 TEST(MeshChangeLog, DiscardedHistoryIsAnErrorNotAWrongAnswer) {
   MeshChangeLog log;
   log.RecordAddedVertex(VertexId{0});

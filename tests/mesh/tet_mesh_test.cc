@@ -51,7 +51,7 @@ TEST(TetMesh, AVertexAddedAtAnotherVertexsOwnPositionCopiesIt) {
   EXPECT_EQ(m.current_position(last), Eigen::Vector3d(0.1, 0.2, 0.3));
 }
 
-TEST(TetMesh, IdsAreNeverReused) {
+TEST(TetMesh, IdsAreNotReusedUntilReleased) {
   TetMesh mesh = SingleTet();
   ASSERT_TRUE(mesh.RemoveTet(TetId{0}).ok());
   ASSERT_TRUE(mesh.RemoveVertex(VertexId{3}).ok());
@@ -67,6 +67,7 @@ TEST(TetMesh, IdsAreNeverReused) {
   EXPECT_EQ(std::vector<TetId>(mesh.tets().begin(), mesh.tets().end()), std::vector{TetId{1}});
   EXPECT_EQ(std::vector<VertexId>(mesh.vertices().begin(), mesh.vertices().end()),
             (std::vector{VertexId{0}, VertexId{1}, VertexId{2}, VertexId{4}}));
+  EXPECT_EQ(mesh.ids_waiting(), 2u);
 }
 
 TEST(TetMesh, RefusesBadRequestsAndChangesNothing) {
@@ -154,8 +155,28 @@ TEST(TetMesh, AdjacencyMatchesBruteForceAfterThousandsOfRandomChanges) {
   TetMesh mesh = *MakeBoxLattice(spec);
   std::mt19937 random(7);
   std::vector<TetVertices> removed;  // tets to put back, so the mesh keeps changing both ways
+  // The tets as a reader of the change log sees them, brought up to date now and then; ids are
+  // released for reuse (some held) up to what it has read.
+  std::map<TetId, TetVertices> seen;
+  for (const TetId t : mesh.tets()) seen[t] = mesh.tet(t);
+  ChangeMark read = mesh.change_log().Mark();
   constexpr int kOperations = 5000;
   for (int op = 0; op < kOperations; ++op) {
+    if (op % 20 == 0) {
+      const absl::StatusOr<MeshChanges> changes = mesh.change_log().ChangesSince(read);
+      ASSERT_TRUE(changes.ok());
+      for (std::size_t i = 0; i < changes->removed_tets.size(); ++i) {
+        ASSERT_EQ(seen.at(changes->removed_tets[i]), changes->removed_tet_corners[i]);
+        seen.erase(changes->removed_tets[i]);
+      }
+      for (const TetId t : changes->added_tets) ASSERT_TRUE(seen.emplace(t, mesh.tet(t)).second);
+      ASSERT_EQ(seen.size(), mesh.tet_count());
+      for (const TetId t : mesh.tets()) ASSERT_EQ(seen.at(t), mesh.tet(t));
+      read = mesh.change_log().Mark();
+      mesh.ReuseIdsRemovedBefore(
+          read, [](VertexId v) { return Index(v) % 5 == 0; },
+          [](TetId t) { return Index(t) % 7 == 0; });
+    }
     const int kind = static_cast<int>(random() % 4);
     if (kind == 0 && mesh.tet_count() > 0) {
       std::vector<TetId> live(mesh.tets().begin(), mesh.tets().end());
@@ -195,6 +216,34 @@ TEST(TetMesh, AdjacencyMatchesBruteForceAfterThousandsOfRandomChanges) {
   std::size_t live_tets = 0;
   for ([[maybe_unused]] const TetId t : mesh.tets()) ++live_tets;
   EXPECT_EQ(live_tets, mesh.tet_count());
+  // Ids were reused: the slots are far fewer than the tets ever added.
+  EXPECT_LT(mesh.tet_index_bound(), 2 * mesh.tet_count() + 100);
+}
+
+TEST(TetMesh, ReleasedIdsAreReusedSmallestFirstButNotHeldOnesNorThoseRemovedAfterTheMark) {
+  BoxLatticeSpec spec;  // 6 tets on 8 vertices
+  TetMesh mesh = *MakeBoxLattice(spec);
+  for (const TetId t : {TetId{4}, TetId{1}, TetId{3}}) ASSERT_TRUE(mesh.RemoveTet(t).ok());
+  const ChangeMark mark = mesh.change_log().Mark();
+  ASSERT_TRUE(mesh.RemoveTet(TetId{0}).ok());  // after the mark: waits
+  const auto none = [](VertexId) { return false; };
+  mesh.ReuseIdsRemovedBefore(mark, none, [](TetId t) { return t == TetId{3}; });
+  EXPECT_EQ(mesh.ids_free(), 2u);
+  EXPECT_EQ(mesh.ids_waiting(), 2u);  // 3, held, and 0, removed after the mark
+  const TetVertices corners = {VertexId{0}, VertexId{1}, VertexId{2}, VertexId{7}};
+  EXPECT_EQ(*mesh.AddTet(corners), TetId{1});
+  EXPECT_EQ(mesh.tet(TetId{1}), corners);
+  EXPECT_EQ(*mesh.AddTet(corners), TetId{4});
+  EXPECT_EQ(*mesh.AddTet(corners), TetId{6});  // none free: a new slot
+  EXPECT_EQ(mesh.tet_index_bound(), 7u);
+  EXPECT_EQ(mesh.tet_count(), 5u);
+  mesh.ReuseIdsRemovedBefore(mesh.change_log().Mark(), none, [](TetId) { return false; });
+  EXPECT_EQ(*mesh.AddTet(corners), TetId{0});
+  EXPECT_EQ(*mesh.AddTet(corners), TetId{3});
+  for (const TetId t : {TetId{0}, TetId{1}, TetId{3}, TetId{4}}) {
+    EXPECT_THAT(mesh.TetsAround(VertexId{7}), ::testing::Contains(t));
+  }
+  ExpectAdjacencyMatchesBruteForce(mesh);
 }
 
 TEST(TetMesh, RepeatedVertexTetIsInThatVertexStarOnce) {
