@@ -104,8 +104,8 @@ class TensorMassModel {
   double mass(mesh::VertexId v) const { return masses_[mesh::Index(v)]; }
   std::span<const double> masses() const { return masses_; }
   std::span<const EdgeTensor> edges() const { return edges_; }
-  // The indices of the vertices some tet uses (with mass and stiffness), ascending. Mesh ids
-  // are never reused, so after many cuts these can be far fewer than vertex_count().
+  // The indices of the vertices some tet uses (with mass and stiffness), ascending: fewer than
+  // the mesh's vertex slots, which include removed vertices whose ids wait for reuse.
   std::span<const std::uint32_t> active_vertices() const { return active_; }
   // The tensor of the edge between a and b, or nullptr if no tet has that edge.
   const EdgeTensor* FindEdge(mesh::VertexId a, mesh::VertexId b) const;
