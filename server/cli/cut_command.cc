@@ -144,7 +144,7 @@ class PoseChecks {
     }
     double covered = 1;
     if (!withdrawn && fidelity_ != nullptr && i > 0) {
-      const lab::CrackFaces crack = fidelity_->FindCrack(*m_);
+      const lab::CrackFaces crack = fidelity_->FindCrackNearStep(*m_, i - 1);
       covered = fidelity_->StepCoverage(crack, i - 1);
       if (covered < 1) report_->set_poses_not_covered(report_->poses_not_covered() + 1);
       if (fidelity_->StepCoverageBelowSurface(crack, i - 1) < 1) {

@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "absl/container/flat_hash_map.h"
+#include "absl/container/flat_hash_set.h"
 #include "geometry/point_triangle_distance.h"
 #include "geometry/tet_measures.h"
 #include "mesh/boundary_surface.h"
@@ -89,7 +90,10 @@ FidelityMeter::FidelityMeter(const mesh::TetMesh& tissue, const FidelityOptions&
     }
     double edges = 0;
     for (int i = 0; i < 4; ++i) {
-      for (int j = i + 1; j < 4; ++j) edges += (c[i] - c[j]).norm();
+      for (int j = i + 1; j < 4; ++j) {
+        edges += (c[i] - c[j]).norm();
+        longest_edge_ = std::max(longest_edge_, (c[i] - c[j]).norm());
+      }
     }
     tet_index_.Add(static_cast<std::uint32_t>(tets_.size()), low, high);
     tets_.push_back(c);
@@ -214,36 +218,75 @@ double FidelityMeter::LocalEdgeLength(const Eigen::Vector3d& p) const {
   return edge;
 }
 
+void CrackFaces::Add(const std::array<Eigen::Vector3d, 3>& t) {
+  index_.Add(static_cast<std::uint32_t>(triangles_.size()), t[0].cwiseMin(t[1]).cwiseMin(t[2]),
+             t[0].cwiseMax(t[1]).cwiseMax(t[2]));
+  triangles_.push_back(t);
+}
+
+bool FidelityMeter::InTissueBoundary(const std::array<Eigen::Vector3d, 3>& t) const {
+  const double on_boundary = 1e-9 * mean_edge_;
+  const Eigen::Vector3d middle = (t[0] + t[1] + t[2]) / 3;
+  const double radius =
+      std::max({(t[0] - middle).norm(), (t[1] - middle).norm(), (t[2] - middle).norm()});
+  for (const std::uint32_t i : boundary_index_.Near(middle, radius + on_boundary)) {
+    const std::array<Eigen::Vector3d, 3>& o = boundary_[i];
+    if (std::all_of(t.begin(), t.end(), [&](const Eigen::Vector3d& p) {
+          return geometry::DistanceToTriangle(p, o[0], o[1], o[2]) <= on_boundary;
+        })) {
+      return true;
+    }
+  }
+  return false;
+}
+
 CrackFaces FidelityMeter::FindCrack(const mesh::TetMesh& cut) const {
   CrackFaces crack(mean_edge_);
-  const double on_boundary = 1e-9 * mean_edge_;
   absl::flat_hash_map<std::array<PointKey, 3>, int> count;
   std::vector<std::array<PointKey, 3>> keys;
   for (const mesh::BoundaryTriangle& b : mesh::ExtractBoundarySurface(cut)) {
     std::array<Eigen::Vector3d, 3> t;
     for (int k = 0; k < 3; ++k) t[k] = cut.rest_position(b.vertices[k]);
-    const Eigen::Vector3d middle = (t[0] + t[1] + t[2]) / 3;
-    const double radius =
-        std::max({(t[0] - middle).norm(), (t[1] - middle).norm(), (t[2] - middle).norm()});
-    bool original = false;
-    for (const std::uint32_t i : boundary_index_.Near(middle, radius + on_boundary)) {
-      const std::array<Eigen::Vector3d, 3>& o = boundary_[i];
-      original = std::all_of(t.begin(), t.end(), [&](const Eigen::Vector3d& p) {
-        return geometry::DistanceToTriangle(p, o[0], o[1], o[2]) <= on_boundary;
-      });
-      if (original) break;
-    }
-    if (original) continue;
+    if (InTissueBoundary(t)) continue;
     std::array<PointKey, 3> key = {KeyOf(t[0]), KeyOf(t[1]), KeyOf(t[2])};
     std::sort(key.begin(), key.end());
     ++count[key];
     keys.push_back(key);
-    crack.index_.Add(static_cast<std::uint32_t>(crack.triangles_.size()),
-                     t[0].cwiseMin(t[1]).cwiseMin(t[2]), t[0].cwiseMax(t[1]).cwiseMax(t[2]));
-    crack.triangles_.push_back(t);
+    crack.Add(t);
   }
   for (const std::array<PointKey, 3>& key : keys) {
     if (count[key] < 2) ++crack.unpaired_;
+  }
+  return crack;
+}
+
+CrackFaces FidelityMeter::FindCrackNearStep(const mesh::TetMesh& cut, std::size_t k) const {
+  CrackFaces crack(mean_edge_);
+  if (StepSamples(k) == 0) return crack;
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(HUGE_VAL), high = -low;
+  for (std::size_t i = StepBegin(k); i < step_end_[k]; ++i) {
+    const Sample& s = step_samples_[i];
+    const double reach = options_.tolerance * s.edge + longest_edge_;
+    low = low.cwiseMin(s.point - Eigen::Vector3d::Constant(reach));
+    high = high.cwiseMax(s.point + Eigen::Vector3d::Constant(reach));
+  }
+  absl::flat_hash_set<std::array<mesh::VertexId, 3>> seen;
+  for (const mesh::VertexId v : cut.vertices()) {
+    const Eigen::Vector3d& x = cut.rest_position(v);
+    if ((x.array() < low.array()).any() || (x.array() > high.array()).any()) continue;
+    for (const mesh::TetId t : cut.TetsAround(v)) {
+      const mesh::TetVertices& c = cut.tet(t);
+      for (const auto& face : mesh::kTetFaces) {
+        std::array<mesh::VertexId, 3> key = {c[face[0]], c[face[1]], c[face[2]]};
+        std::sort(key.begin(), key.end());
+        if (!seen.insert(key).second || cut.TetsAroundFace(key[0], key[1], key[2]).size() != 1) {
+          continue;
+        }
+        const std::array<Eigen::Vector3d, 3> triangle = {
+            cut.rest_position(key[0]), cut.rest_position(key[1]), cut.rest_position(key[2])};
+        if (!InTissueBoundary(triangle)) crack.Add(triangle);
+      }
+    }
   }
   return crack;
 }

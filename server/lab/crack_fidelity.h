@@ -56,6 +56,7 @@ class CrackFaces {
  private:
   friend class FidelityMeter;
   explicit CrackFaces(double cell_size) : index_(cell_size) {}
+  void Add(const std::array<Eigen::Vector3d, 3>& t);
 
   std::vector<std::array<Eigen::Vector3d, 3>> triangles_;
   BoxIndex index_;
@@ -87,7 +88,12 @@ class FidelityMeter {
   std::size_t AddStep(const cut::BladePose& from, const cut::BladePose& to);
 
   // The crack of `cut`, a mesh cut from the tissue (its vertices at their rest positions).
+  // O(tets * star size).
   CrackFaces FindCrack(const mesh::TetMesh& cut) const;
+  // The crack faces of `cut` that may cover step k's samples: those with a corner within the
+  // tolerance at the samples plus the tissue's longest edge of them (no others can), unpaired
+  // faces not counted. O(vertices + the crack there): what a check after every pose needs.
+  CrackFaces FindCrackNearStep(const mesh::TetMesh& cut, std::size_t k) const;
 
   // Coverage over every step so far, overcut and unpaired faces. O(samples + crack faces).
   Fidelity Measure(const CrackFaces& crack) const;
@@ -131,9 +137,12 @@ class FidelityMeter {
   bool OnBoundary(const std::vector<Eigen::Vector3d>& piece, std::uint32_t tet) const;
   Sample MakeSample(const Eigen::Vector3d& p, std::uint32_t tet) const;
   bool Covered(const CrackFaces& crack, const Sample& s) const;
+  // Whether a triangle (rest positions) lies in the tissue's boundary.
+  bool InTissueBoundary(const std::array<Eigen::Vector3d, 3>& t) const;
 
   FidelityOptions options_;
   double mean_edge_;
+  double longest_edge_ = 0;
   std::vector<std::array<Eigen::Vector3d, 4>> tets_;  // rest corners
   std::vector<double> tet_edge_;                      // mean edge length per tet
   std::vector<std::array<bool, 4>> boundary_face_;    // per tet: is face k (opposite k) outside

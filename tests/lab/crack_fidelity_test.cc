@@ -161,5 +161,32 @@ TEST(FidelityMeter, UnpairedLipsAreCounted) {
   EXPECT_EQ(f.crack_faces, 16u - 1 + f.unpaired_faces - 1);  // the lip's twin, and the new ones
 }
 
+// The crack near a step is all a step's coverage needs: the same as with the whole crack, for
+// whole and half cracks, on the plane swept and beside it.
+TEST(FidelityMeter, TheCrackNearAStepCoversItAsTheWholeCrackDoes) {
+  for (const double x : {2.0, 1.0, 2.2}) {
+    const FidelityMeter meter = MeterFor(SweepAt(x, 12));
+    for (const bool whole : {true, false}) {
+      const TetMesh cut = PartedAt(2, whole);
+      const CrackFaces crack = meter.FindCrack(cut);
+      double sum = 0;
+      for (std::size_t k = 0; k < meter.steps(); ++k) {
+        const CrackFaces near = meter.FindCrackNearStep(cut, k);
+        EXPECT_LE(near.size(), crack.size());
+        EXPECT_EQ(meter.StepCoverage(near, k), meter.StepCoverage(crack, k)) << x << " " << k;
+        EXPECT_EQ(meter.StepCoverageBelowSurface(near, k),
+                  meter.StepCoverageBelowSurface(crack, k));
+        if (meter.StepSamples(k) > 0) sum += meter.StepCoverage(near, k);
+      }
+      if (x == 2.0 && whole) {
+        EXPECT_GE(sum, 6);  // the steps inside the tissue, all covered
+      }
+      if (x == 1.0) {
+        EXPECT_EQ(sum, 0);  // a crack a whole edge away covers nothing
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace kerf::lab
