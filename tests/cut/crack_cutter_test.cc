@@ -393,7 +393,7 @@ PathResult CutChecked(const TetMesh& tissue, CutMode mode, lab::PathFamily famil
     const std::size_t step = meter.AddStep(poses[i - 1], poses[i]);
     if (mode == CutMode::kProgressive && meter.StepSamples(step) > 0) {
       ++result.steps;
-      result.lagging += meter.StepCoverage(meter.FindCrack(m), step) < 1;
+      result.lagging += meter.StepCoverage(meter.FindCrackNearStep(m, step), step) < 1;
     }
   }
   cutter.Finish();
