@@ -122,6 +122,17 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   // where it is chosen by shape, and lack the faces to open).
   const bool stood = stood_.contains(unit);
   std::optional<CrackSplit> split = stood ? PiecesAsSplit(unit) : SplitWithoutApex(crack, rest);
+  // For good, a minimal split with a sliver gives way to a cone that has none (the face
+  // triangles are the same; only the inside differs).
+  std::optional<Eigen::Vector4d> cone_apex;
+  if (blade == nullptr && !stood && split && split->kind != CrackSplitKind::kWhole &&
+      SmallestAngle(*split, rest) < kSliverAngleDeg) {
+    const Eigen::Vector4d apex = ConeApexWeights(crack, rest);
+    if (SmallestConeAngle(crack, rest, apex) >= kSliverAngleDeg) {
+      split.reset();
+      cone_apex = apex;
+    }
+  }
   const bool was_open = open_.contains(unit);
   if (split && split->kind == CrackSplitKind::kWhole && !was_open) {
     std::vector<VertexId> to_part;
@@ -132,9 +143,10 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     return to_part;
   }
   if (!split) {
-    split = SplitAsCone(
-        crack, TemporaryVertex(ApexPlace(unit), corners,
-                               blade != nullptr ? blade->apex : ConeApexWeights(crack, rest)));
+    split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners,
+                                               blade != nullptr ? blade->apex
+                                               : cone_apex      ? *cone_apex
+                                                                : ConeApexWeights(crack, rest)));
   }
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
   // between its points and the crack stay open until it moves on.

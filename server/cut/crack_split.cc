@@ -392,6 +392,24 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
   return best;
 }
 
+double SmallestConeAngle(const TetCrack& crack,
+                         const std::function<Eigen::Vector3d(VertexId)>& rest,
+                         const Eigen::Vector4d& weights) {
+  Eigen::Vector3d apex = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) apex += weights[k] * rest(crack.corners[k]);
+  return SmallestConeAngle(crack, rest, apex);
+}
+
+double SmallestAngle(const CrackSplit& split,
+                     const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  double smallest = 180;
+  for (const mesh::TetVertices& t : split.tets) {
+    const auto angles = geometry::DihedralAnglesDeg(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3]));
+    smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
+  }
+  return smallest;
+}
+
 CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {
   CrackSplit split;
   split.kind = CrackSplitKind::kCone;

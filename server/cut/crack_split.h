@@ -87,6 +87,14 @@ bool OpenCrackFace(CrackSplit* split, const std::array<mesh::VertexId, 3>& face,
 Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
                                 const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
+// The smallest dihedral angle (degrees) of the cone with its apex at barycentric `weights`, and
+// of a split's tets, on rest positions.
+double SmallestConeAngle(const TetCrack& crack,
+                         const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
+                         const Eigen::Vector4d& weights);
+double SmallestAngle(const CrackSplit& split,
+                     const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
+
 // A cone's apex is kept at least this far (barycentric) from the tet's faces.
 inline constexpr double kApexMargin = 0.15;
 // Barycentric weights (summing to 1) moved towards `towards` (weights each at least kApexMargin;

@@ -492,14 +492,17 @@ TEST(KerfCli, CutTakesAHeightGuardThatChangesNoCut) {
 
 // Snapping: along the straight path the blade passes within 0.2 of an edge of a plane of
 // vertices; by default (0.2) it cuts through them, and every tet goes over whole (no tet is
-// cut, no sliver), where the least snapping (--snap 0) leaves slivers; progressive cutting ends
-// with the same mesh.
+// cut, no sliver), where the least snapping (--snap 0) cuts the tets beside them into pieces
+// (as cones where the minimal split would leave slivers); progressive cutting ends with the
+// same mesh.
 TEST(KerfCli, CutSnapsThroughVertices) {
   const auto cut = [](absl::string_view extra) { return CutLattice("lattice-straight", extra); };
   const kerf::v1::CutReport plain = cut(" --deferred --snap 0");
   const kerf::v1::CutReport snapped = cut(" --deferred");
   EXPECT_EQ(plain.snapped_vertices(), 0u);
-  EXPECT_GT(plain.slivers(), 0u);
+  EXPECT_GT(plain.cut_tets(), 0u);
+  EXPECT_GT(plain.tets_after(), plain.tets_before());
+  EXPECT_EQ(plain.slivers(), 0u);
   EXPECT_GT(snapped.snapped_vertices(), 0u);
   EXPECT_EQ(snapped.snap_fraction(), 0.2);
   EXPECT_EQ(snapped.slivers(), 0u);

@@ -530,5 +530,24 @@ TEST(CrackSplit, ACrackFaceInAFaceOfTheTetOpensItsOneTet) {
   }
 }
 
+// A corner cut whose third point lies near the corner: the minimal split (case i) has a sliver,
+// and a cone over the same face triangles has none (what CrackCutter splits for good instead).
+TEST(CrackSplit, ACornerCutNearTheCornerHasASliverThatAConeAvoids) {
+  OneTet tet;
+  tet.CutEdge(3, 0, 0.7);
+  tet.CutEdge(3, 1, 0.7);
+  tet.CutEdge(3, 2, 0.16);
+  const TetCrack crack = tet.Crack();
+  const std::optional<CrackSplit> minimal = SplitWithoutApex(crack, tet.RestOf());
+  ASSERT_TRUE(minimal.has_value());
+  EXPECT_EQ(minimal->kind, CrackSplitKind::kMinimal);
+  EXPECT_LT(SmallestAngle(*minimal, tet.RestOf()), 5);
+  const Eigen::Vector4d apex = ConeApexWeights(crack, tet.RestOf());
+  const double cone = SmallestConeAngle(crack, tet.RestOf(), apex);
+  EXPECT_GE(cone, 5);
+  const CrackSplit split = SplitAsCone(crack, tet.Apex(apex));
+  EXPECT_NEAR(SmallestAngle(split, tet.RestOf()), cone, 1e-9);
+}
+
 }  // namespace
 }  // namespace kerf::cut
