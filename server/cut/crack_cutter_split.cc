@@ -122,16 +122,11 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   // where it is chosen by shape, and lack the faces to open).
   const bool stood = stood_.contains(unit);
   std::optional<CrackSplit> split = stood ? PiecesAsSplit(unit) : SplitWithoutApex(crack, rest);
-  // For good, a minimal split with a sliver gives way to a cone that has none (the face
-  // triangles are the same; only the inside differs).
+  // For good, a minimal split with a sliver gives way to a cone that has none.
   std::optional<Eigen::Vector4d> cone_apex;
-  if (blade == nullptr && !stood && split && split->kind != CrackSplitKind::kWhole &&
-      SmallestAngle(*split, rest) < kSliverAngleDeg) {
-    const Eigen::Vector4d apex = ConeApexWeights(crack, rest);
-    if (SmallestConeAngle(crack, rest, apex) >= kSliverAngleDeg) {
-      split.reset();
-      cone_apex = apex;
-    }
+  if (blade == nullptr && !stood && split) {
+    cone_apex = SliverFreeConeApex(crack, *split, rest, kSliverAngleDeg);
+    if (cone_apex) split.reset();
   }
   const bool was_open = open_.contains(unit);
   if (split && split->kind == CrackSplitKind::kWhole && !was_open) {

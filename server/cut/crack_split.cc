@@ -410,6 +410,17 @@ double SmallestAngle(const CrackSplit& split,
   return smallest;
 }
 
+std::optional<Eigen::Vector4d> SliverFreeConeApex(
+    const TetCrack& crack, const CrackSplit& split,
+    const std::function<Eigen::Vector3d(VertexId)>& rest, double degrees) {
+  if (split.kind == CrackSplitKind::kWhole || SmallestAngle(split, rest) >= degrees) {
+    return std::nullopt;
+  }
+  const Eigen::Vector4d apex = ConeApexWeights(crack, rest);
+  if (SmallestConeAngle(crack, rest, apex) < degrees) return std::nullopt;
+  return apex;
+}
+
 CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {
   CrackSplit split;
   split.kind = CrackSplitKind::kCone;

@@ -95,6 +95,14 @@ double SmallestConeAngle(const TetCrack& crack,
 double SmallestAngle(const CrackSplit& split,
                      const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
+// The apex (barycentric) of the cone to split the tet by for good instead of `split`, a split
+// without a new point: where `split` has a piece under `degrees` and the best cone
+// (ConeApexWeights) has none. Its face triangles are the same, so the tets beside it agree.
+// nullopt otherwise (a whole tet, or no better cone).
+std::optional<Eigen::Vector4d> SliverFreeConeApex(
+    const TetCrack& crack, const CrackSplit& split,
+    const std::function<Eigen::Vector3d(mesh::VertexId)>& rest, double degrees);
+
 // A cone's apex is kept at least this far (barycentric) from the tet's faces.
 inline constexpr double kApexMargin = 0.15;
 // Barycentric weights (summing to 1) moved towards `towards` (weights each at least kApexMargin;

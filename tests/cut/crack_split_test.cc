@@ -547,6 +547,19 @@ TEST(CrackSplit, ACornerCutNearTheCornerHasASliverThatAConeAvoids) {
   EXPECT_GE(cone, 5);
   const CrackSplit split = SplitAsCone(crack, tet.Apex(apex));
   EXPECT_NEAR(SmallestAngle(split, tet.RestOf()), cone, 1e-9);
+  const std::optional<Eigen::Vector4d> chosen =
+      SliverFreeConeApex(crack, *minimal, tet.RestOf(), 5);
+  ASSERT_TRUE(chosen.has_value());
+  EXPECT_EQ(*chosen, apex);
+  // Cut farther from the corner, the minimal split has no sliver and stays.
+  OneTet round;
+  round.CutEdge(3, 0, 0.5);
+  round.CutEdge(3, 1, 0.5);
+  round.CutEdge(3, 2, 0.5);
+  const TetCrack round_crack = round.Crack();
+  const std::optional<CrackSplit> round_split = SplitWithoutApex(round_crack, round.RestOf());
+  ASSERT_TRUE(round_split.has_value());
+  EXPECT_FALSE(SliverFreeConeApex(round_crack, *round_split, round.RestOf(), 5).has_value());
 }
 
 }  // namespace
