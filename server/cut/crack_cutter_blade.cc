@@ -153,7 +153,15 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
     // Found once, from the lower id, so the units at the edge agree on it.
     const bool from_i = Index(corners[i]) < Index(corners[j]);
     auto [at, inserted] = found->edges.try_emplace(key);
-    if (inserted) at->second = BladeThroughEdge(pose, from_i ? x[i] : x[j], from_i ? x[j] : x[i]);
+    if (inserted) {
+      at->second = BladeThroughEdge(pose, from_i ? x[i] : x[j], from_i ? x[j] : x[i]);
+      // A blade lying in the plane of the tissue's surface there slides along it: it cuts nothing.
+      if (at->second &&
+          surface_.SegmentOnFaceAtEdge(*mesh_, corners[i], corners[j], pose.tip, pose.heel,
+                                       kInPlaneTolerance * (x[i] - x[j]).norm())) {
+        at->second.reset();
+      }
+    }
     if (!at->second) continue;
     // Through an edge cut already the blade meets the unit (it lies in the crack there, which
     // opens where the blade is in the units on both sides) but makes no point.

@@ -1,6 +1,7 @@
 #include "cut/tissue_surface.h"
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "mesh/boundary_surface.h"
 
@@ -29,6 +30,25 @@ Eigen::Vector3d TissueSurface::Normal(const mesh::TetMesh& mesh, mesh::VertexId 
     normal += (mesh.current_position(t[1]) - a).cross(mesh.current_position(t[2]) - a);
   }
   return normal.normalized();
+}
+
+bool TissueSurface::SegmentOnFaceAtEdge(const mesh::TetMesh& mesh, mesh::VertexId a,
+                                        mesh::VertexId b, const Eigen::Vector3d& p,
+                                        const Eigen::Vector3d& q, double tolerance) const {
+  const auto it = triangles_.find(a);
+  if (it == triangles_.end()) return false;
+  for (const auto& t : it->second) {
+    if (t[0] != b && t[1] != b && t[2] != b) continue;
+    const Eigen::Vector3d& o = mesh.current_position(t[0]);
+    const Eigen::Vector3d n =
+        (mesh.current_position(t[1]) - o).cross(mesh.current_position(t[2]) - o);
+    if (n.squaredNorm() == 0) continue;
+    const Eigen::Vector3d unit = n.normalized();
+    if (std::abs(unit.dot(p - o)) <= tolerance && std::abs(unit.dot(q - o)) <= tolerance) {
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace kerf::cut

@@ -27,6 +27,12 @@ class TissueSurface {
   // The outward normal at a vertex of the surface (its triangles' normals summed, weighted by
   // their areas) on the mesh's current positions; zero for a vertex not on it.
   Eigen::Vector3d Normal(const mesh::TetMesh& mesh, mesh::VertexId v) const;
+  // Whether the segment p-q lies in the plane of a triangle of the surface at the edge a-b (its
+  // ends within `tolerance`, m, of it), on the mesh's current positions: a blade lying there
+  // slides along the surface. False for an edge not on the surface.
+  bool SegmentOnFaceAtEdge(const mesh::TetMesh& mesh, mesh::VertexId a, mesh::VertexId b,
+                           const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                           double tolerance) const;
 
  private:
   absl::flat_hash_set<mesh::VertexId> vertices_;

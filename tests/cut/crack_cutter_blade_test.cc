@@ -67,6 +67,33 @@ TEST(CrackCutterBlade, ThinPiecesOnTheBladeAreSoftenedWhileItIsThere) {
   }
 }
 
+// A blade lying in the plane of the tissue's surface (the face z = 0 of the unit tet), swept
+// across that face through two of its edges, slides along the surface: it cuts nothing, in
+// either mode. The same blade in the plane z = 0.4 cuts the tet.
+TEST(CrackCutterBlade, ABladeSlidingAlongTheSurfaceCutsNothing) {
+  for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+    for (const double z : {0.0, 0.4}) {
+      TetMesh m = kerf::testing::UnitTet();
+      CrackCutter cutter = *CrackCutter::Create(&m, 1, kLoose, {.mode = mode});
+      for (int k = 0; k <= 20; ++k) {
+        const double x = -0.5 + 0.1 * k;
+        ASSERT_TRUE(cutter.ApplyPose({0.01 * k, {x, -0.5, z}, {x, 1.5, z}}).ok());
+        if (z == 0) {
+          EXPECT_EQ(m.tet_count(), 1u) << "pose " << k;
+        }
+      }
+      cutter.Finish();
+      EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+      if (z == 0) {
+        EXPECT_EQ(m.tet_count(), 1u);
+        EXPECT_EQ(cutter.statistics().cut_tets, 0u);
+      } else {
+        EXPECT_EQ(cutter.statistics().cut_tets, 1u);
+      }
+    }
+  }
+}
+
 // The scripted paths reach every case of the paper's Table 1, each pose valid and conforming
 // (cut with the least snapping: the paths were found for crossings taken where they are).
 TEST(CrackCutterBlade, EveryTableCaseIsReached) {

@@ -57,5 +57,20 @@ TEST_F(TissueSurfaceTest, TheNormalPointsOutOnCurrentPositions) {
   EXPECT_TRUE(surface_.Normal(turned, At({1, 1, 2})).isApprox(Eigen::Vector3d(0, -1, 0)));
 }
 
+// A segment lies on the surface at an edge where it is in the plane of a surface triangle at that
+// edge: a segment on the top at the top's edge does, the same segment lifted past the tolerance,
+// or standing up through the top, does not, nor does one at an edge inside.
+TEST_F(TissueSurfaceTest, ASegmentInTheTopsPlaneLiesOnTheTopAtItsEdges) {
+  const mesh::VertexId a = At({1, 1, 2}), b = At({0, 1, 2});
+  ASSERT_TRUE(surface_.HasEdge(a, b));
+  const Eigen::Vector3d p(0.5, -1, 2), q(0.5, 3, 2);
+  EXPECT_TRUE(surface_.SegmentOnFaceAtEdge(lattice_, a, b, p, q, 1e-3));
+  const Eigen::Vector3d up(0, 0, 2e-3);
+  EXPECT_FALSE(surface_.SegmentOnFaceAtEdge(lattice_, a, b, p + up, q + up, 1e-3));
+  EXPECT_TRUE(surface_.SegmentOnFaceAtEdge(lattice_, a, b, p + up, q + up, 3e-3));
+  EXPECT_FALSE(surface_.SegmentOnFaceAtEdge(lattice_, a, b, {0.5, 1, 1}, {0.5, 1, 3}, 1e-3));
+  EXPECT_FALSE(surface_.SegmentOnFaceAtEdge(lattice_, At({1, 1, 1}), a, p, q, 1e-3));
+}
+
 }  // namespace
 }  // namespace kerf::cut
