@@ -276,6 +276,13 @@ Eigen::Vector4d PulledInside(const Eigen::Vector4d& w, const Eigen::Vector4d& to
 
 namespace {
 
+// The smallest dihedral angle of the tet a-b-c-d, in degrees.
+double SmallestDihedral(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
+  const std::array<double, 6> angles = geometry::DihedralAnglesDeg(a, b, c, d);
+  return *std::min_element(angles.begin(), angles.end());
+}
+
 // The smallest dihedral angle of the cone from `apex` over the crack's face triangles (degrees).
 double SmallestConeAngle(const TetCrack& crack,
                          const std::function<Eigen::Vector3d(VertexId)>& rest,
@@ -283,8 +290,7 @@ double SmallestConeAngle(const TetCrack& crack,
   double smallest = 180;
   for (const FaceSplit& f : crack.faces) {
     for (const Triangle& t : f.triangles) {
-      const auto angles = geometry::DihedralAnglesDeg(apex, rest(t[0]), rest(t[1]), rest(t[2]));
-      smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
+      smallest = std::min(smallest, SmallestDihedral(apex, rest(t[0]), rest(t[1]), rest(t[2])));
     }
   }
   return smallest;
@@ -404,8 +410,7 @@ double SmallestAngle(const CrackSplit& split,
                      const std::function<Eigen::Vector3d(VertexId)>& rest) {
   double smallest = 180;
   for (const mesh::TetVertices& t : split.tets) {
-    const auto angles = geometry::DihedralAnglesDeg(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3]));
-    smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
+    smallest = std::min(smallest, SmallestDihedral(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])));
   }
   return smallest;
 }
