@@ -11,7 +11,9 @@
 // becomes that edge's point; an edge's within kSliverSnapScale times that where it would make a
 // sliver), and a vertex that near the swept surface, is taken at the corner, which is then on the
 // crack, if the corner lies within kSnapReach of its tets' mean edge of the step's swept surface;
-// farther, an edge's point moves away from the corner instead. So it does from a vertex of the
+// farther, an edge's point moves away from the corner instead, but for a corner that is a point
+// of the crack on an edge or face (the blade going back over its cut): there the crossing adds
+// no point, the crack being there already. So it does from a vertex of the
 // tissue's surface where the crack, snapped to it, would lie on the surface and what the blade
 // cut under it be lost (SnapWouldLayCrackOnSurface: the blade grazing the surface, its tip just
 // under it, or sweeping along it), and a face's crossing beside an edge of the surface stays a
@@ -309,6 +311,12 @@ class CrackCutter {
   bool IsInnerPoint(mesh::VertexId origin) const {
     const auto it = recipe_.find(origin);
     return it != recipe_.end() && (it->second.weights.array() != 0).count() == 4;
+  }
+  // Whether `origin` is a point the cut made on an edge or a face of the tissue (not inside a
+  // tet): such points lie on the crack.
+  bool IsPointOnEdgeOrFace(mesh::VertexId origin) const {
+    const auto it = recipe_.find(origin);
+    return it != recipe_.end() && (it->second.weights.array() != 0).count() < 4;
   }
   // A made point's PointRecipe::scale (0 for the tissue's own vertices).
   double TissueScale(mesh::VertexId origin) const {

@@ -74,6 +74,10 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
       Snap(nearer, touched);
       return;
     }
+    // A point of the crack (an edge's or a face's, corner of a piece) this near the crossing
+    // already puts the crack there: a blade going back over its cut adds nothing, where moving
+    // the crossing away would cut the pieces beside the crack again into slivers.
+    if (IsPointOnEdgeOrFace(nearer)) return;
     // Too far from the blade's path to snap onto the crack: a swept crossing moves away from
     // the corner instead, out of the snap share (and the sliver share) as far as it may go
     // without leaving the reach of the blade's crossing. One the blade leaves stays where the
