@@ -180,6 +180,7 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
     return valid;
   }
   last_pose_ = {};
+  ++poses_;
   if (previous_) {
     const BladePose& from = *previous_;
     step_ = {from, pose};
@@ -282,7 +283,10 @@ void CrackCutter::OpenShutCrackFaces() {
 
 void CrackCutter::Join(const std::vector<TetId>& units) {
   for (const TetId t : units) {
-    if (group_of_.try_emplace(t, t).second) members_[t] = {t};
+    if (group_of_.try_emplace(t, t).second) {
+      members_[t] = {t};
+      group_since_[t] = poses_;
+    }
   }
   for (std::size_t i = 1; i < units.size(); ++i) {
     TetId a = group_of_.at(units[0]), b = group_of_.at(units[i]);
@@ -290,6 +294,8 @@ void CrackCutter::Join(const std::vector<TetId>& units) {
     if (members_.at(a).size() < members_.at(b).size()) std::swap(a, b);
     std::vector<TetId> moved = std::move(members_.at(b));
     members_.erase(b);
+    group_since_[a] = std::min(group_since_.at(a), group_since_.at(b));
+    group_since_.erase(b);
     for (const TetId t : moved) group_of_[t] = a;
     std::vector<TetId>& into = members_.at(a);
     into.insert(into.end(), moved.begin(), moved.end());
@@ -317,6 +323,7 @@ void CrackCutter::SplitReadyGroups(const BladePose* pose) {
 std::vector<TetId> CrackCutter::TakeGroup(TetId root) {
   std::vector<TetId> group = std::move(members_.at(root));
   members_.erase(root);
+  group_since_.erase(root);
   for (const TetId t : group) group_of_.erase(t);
   return group;
 }

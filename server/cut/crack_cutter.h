@@ -11,17 +11,18 @@
 // becomes that edge's point; an edge's within kSliverSnapScale times that where it would make a
 // sliver), and a vertex that near the swept surface, is taken at the corner, which is then on the
 // crack, if the corner lies within kSnapReach of its tets' mean edge of the step's swept surface;
-// farther, an edge's point moves away from the corner instead, but for a corner that is a point
-// of the crack on an edge or face (the blade going back over its cut): there the crossing adds
-// no point, the crack being there already. So it does from a vertex of the
+// farther, an edge's point moves away from the corner instead. So it does from a vertex of the
 // tissue's surface where the crack, snapped to it, would lie on the surface and what the blade
 // cut under it be lost (SnapWouldLayCrackOnSurface: the blade grazing the surface, its tip just
 // under it, or sweeping along it), and a face's crossing beside an edge of the surface stays a
-// point of the face, moved off the edge to the snap share. The tissue's edge length is the
-// edge's own for the tissue's edges and that of the tet it was cut from for a piece's edge
-// (SnapShare), so a cut through pieces makes none finer than a cut through tets. Points are kept as
-// weights until a split uses them. Edges and faces are named by their vertices' origins
-// (cut/star_parting.h), so the two lips of a crack share their points.
+// point of the face, moved off the edge to the snap share. What is cut stays cut: a crossing
+// within kSnapReach of the tissue's edge there of a crack face made before (of a tet the blade
+// does not hold open) adds no point (OnTheCrackAlready), so a blade going back over its cut, or
+// coming in again where it came out, does not cut the pieces beside the crack again. The
+// tissue's edge length is the edge's own for the tissue's edges and that of the tet it was cut
+// from for a piece's edge (SnapShare), so a cut through pieces makes none finer than a cut through
+// tets. Points are kept as weights until a split uses them. Edges and faces are named by their
+// vertices' origins (cut/star_parting.h), so the two lips of a crack share their points.
 //
 // The tets that share points form groups. Progressive (the default): after every pose, each tet
 // with new points, and each the blade is or was in, is split at once from its own corners (an
@@ -265,6 +266,11 @@ class CrackCutter {
   std::vector<mesh::TetId> UnitsAround(const std::vector<mesh::VertexId>& origins) const;
   std::vector<mesh::TetVertices> CornersOfAll(const std::vector<mesh::TetId>& units) const;
 
+  // Whether the point `x` (rest positions) on the element of `origins` lies within kSnapReach of
+  // the tissue's edge there of a crack face made before, in a tet at one of `origins`: before the
+  // oldest group there is now began (the blade's visit), and not one of an open unit's own crack
+  // faces. The crack is there already.
+  bool OnTheCrackAlready(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins) const;
   // Records crossings as points (snapping them); adds the units they touch.
   void RecordCrossings(const Crossings& found, std::vector<mesh::TetId>* touched);
   // Where an edge's crossing comes from: the blade's edge swept across the edge in a step, or the
@@ -311,12 +317,6 @@ class CrackCutter {
   bool IsInnerPoint(mesh::VertexId origin) const {
     const auto it = recipe_.find(origin);
     return it != recipe_.end() && (it->second.weights.array() != 0).count() == 4;
-  }
-  // Whether `origin` is a point the cut made on an edge or a face of the tissue (not inside a
-  // tet): such points lie on the crack.
-  bool IsPointOnEdgeOrFace(mesh::VertexId origin) const {
-    const auto it = recipe_.find(origin);
-    return it != recipe_.end() && (it->second.weights.array() != 0).count() < 4;
   }
   // A made point's PointRecipe::scale (0 for the tissue's own vertices).
   double TissueScale(mesh::VertexId origin) const {
@@ -427,7 +427,9 @@ class CrackCutter {
   void CountPieces(mesh::TetId source, std::size_t removed, std::size_t added);
   std::vector<mesh::TetId> Replace(mesh::TetId unit, const std::vector<mesh::TetVertices>& pieces);
   void Repart(const std::vector<mesh::VertexId>& origins);
-  void AddCrack(const FaceKey& key) { ++crack_[key]; }
+  void AddCrack(const FaceKey& key) {
+    if (++crack_[key] == 1) crack_since_[key] = poses_;
+  }
   void RemoveCrack(const FaceKey& key);
 
   // The groups of units sharing points: they split together (deferred) and stay open together
@@ -464,6 +466,12 @@ class CrackCutter {
   absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;  // by origins
   absl::flat_hash_set<mesh::VertexId> on_crack_;                      // origins
   absl::flat_hash_map<FaceKey, int, FaceKeyHash> crack_;  // by origins, with how many mark it
+  // The poses applied, when each crack face was made, and when each group (by its root) began:
+  // a crack face made before every group there is now is the crack made before
+  // (OnTheCrackAlready).
+  std::size_t poses_ = 0;
+  absl::flat_hash_map<FaceKey, std::size_t, FaceKeyHash> crack_since_;
+  absl::flat_hash_map<mesh::TetId, std::size_t> group_since_;
   absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;
   absl::flat_hash_set<mesh::TetId> stood_;            // open units whose pieces stood this pose

@@ -25,6 +25,12 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
   for (const FaceCrossing& c : found.faces) {
     if (face_points_.contains(c.face)) continue;
     const Eigen::Vector3d& b = c.barycentric;
+    if (OnTheCrackAlready(b[0] * mesh_->rest_position(c.face[0]) +
+                              b[1] * mesh_->rest_position(c.face[1]) +
+                              b[2] * mesh_->rest_position(c.face[2]),
+                          c.face)) {
+      continue;
+    }
     int largest = 0, smallest = 0;
     b.maxCoeff(&largest);
     b.minCoeff(&smallest);
@@ -58,10 +64,46 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
   }
 }
 
+bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
+                                    std::span<const VertexId> origins) const {
+  const double reach = kSnapReach * LengthsOf(origins).tissue_edge();
+  std::size_t visit = poses_;
+  for (const auto& [root, since] : group_since_) visit = std::min(visit, since);
+  for (const VertexId o : origins) {
+    for (const TetId t : parting_.TetsAround(*mesh_, o)) {
+      // An open unit's own crack faces are the crack being made, up to the blade.
+      const auto owner = open_.find(UnitOf(t));
+      mesh::TetVertices c = mesh_->tet(t);
+      for (VertexId& v : c) v = parting_.Origin(v);
+      for (const auto& f : mesh::kTetFaces) {
+        const FaceKey key = MakeFaceKey(c[f[0]], c[f[1]], c[f[2]]);
+        const auto since = crack_since_.find(key);
+        if (since == crack_since_.end() || since->second >= visit) continue;
+        if (owner != open_.end() &&
+            std::binary_search(owner->second.crack.begin(), owner->second.crack.end(), key)) {
+          continue;
+        }
+        if (geometry::DistanceToTriangle(x, mesh_->rest_position(key[0]),
+                                         mesh_->rest_position(key[1]),
+                                         mesh_->rest_position(key[2])) < reach) {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
 void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fraction,
                                      EdgeCrossingFrom from, std::vector<TetId>* touched) {
   const EdgeKey key = MakeEdgeKey(low, high);
   if (edge_points_.contains(key)) return;
+  // What is cut stays cut: a crossing the crack made before already covers adds nothing.
+  if (OnTheCrackAlready(
+          (1 - fraction) * mesh_->rest_position(low) + fraction * mesh_->rest_position(high),
+          std::array<VertexId, 2>{low, high})) {
+    return;
+  }
   const double share = SnapShare(std::array<VertexId, 2>{low, high});
   // The least snapping (the fraction at its minimum) moves no crossing for quality either.
   const double sliver_share = snap_fraction_ > kMinSnapFraction ? kSliverSnapScale * share : 0;
@@ -74,10 +116,6 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
       Snap(nearer, touched);
       return;
     }
-    // A point of the crack (an edge's or a face's, corner of a piece) this near the crossing
-    // already puts the crack there: a blade going back over its cut adds nothing, where moving
-    // the crossing away would cut the pieces beside the crack again into slivers.
-    if (IsPointOnEdgeOrFace(nearer)) return;
     // Too far from the blade's path to snap onto the crack: a swept crossing moves away from
     // the corner instead, out of the snap share (and the sliver share) as far as it may go
     // without leaving the reach of the blade's crossing. One the blade leaves stays where the

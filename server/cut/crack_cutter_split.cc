@@ -379,7 +379,10 @@ void CrackCutter::CountPieces(TetId source, std::size_t removed, std::size_t add
 void CrackCutter::RemoveCrack(const FaceKey& key) {
   const auto it = crack_.find(key);
   KERF_CHECK(it != crack_.end());
-  if (--it->second == 0) crack_.erase(it);
+  if (--it->second == 0) {
+    crack_.erase(it);
+    crack_since_.erase(key);
+  }
 }
 
 void CrackCutter::Repart(const std::vector<VertexId>& origins) {
