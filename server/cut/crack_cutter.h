@@ -40,6 +40,7 @@
 #pragma once
 
 #include <algorithm>
+#include <map>
 #include <optional>
 #include <span>
 #include <vector>
@@ -428,7 +429,10 @@ class CrackCutter {
   std::vector<mesh::TetId> Replace(mesh::TetId unit, const std::vector<mesh::TetVertices>& pieces);
   void Repart(const std::vector<mesh::VertexId>& origins);
   void AddCrack(const FaceKey& key) {
-    if (++crack_[key] == 1) crack_since_[key] = poses_;
+    if (++crack_[key] == 1) {
+      crack_since_[key] = poses_;
+      ++crack_faces_since_[poses_];
+    }
   }
   void RemoveCrack(const FaceKey& key);
 
@@ -471,6 +475,7 @@ class CrackCutter {
   // (OnTheCrackAlready).
   std::size_t poses_ = 0;
   absl::flat_hash_map<FaceKey, std::size_t, FaceKeyHash> crack_since_;
+  std::map<std::size_t, std::size_t> crack_faces_since_;  // how many crack faces made at a pose
   absl::flat_hash_map<mesh::TetId, std::size_t> group_since_;
   absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;

@@ -66,9 +66,11 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
 
 bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
                                     std::span<const VertexId> origins) const {
-  const double reach = kSnapReach * LengthsOf(origins).tissue_edge();
   std::size_t visit = poses_;
   for (const auto& [root, since] : group_since_) visit = std::min(visit, since);
+  // None made before the visit: nothing to look for.
+  if (crack_faces_since_.empty() || crack_faces_since_.begin()->first >= visit) return false;
+  const double reach = kSnapReach * LengthsOf(origins).tissue_edge();
   for (const VertexId o : origins) {
     for (const TetId t : parting_.TetsAround(*mesh_, o)) {
       // An open unit's own crack faces are the crack being made, up to the blade.

@@ -381,7 +381,10 @@ void CrackCutter::RemoveCrack(const FaceKey& key) {
   KERF_CHECK(it != crack_.end());
   if (--it->second == 0) {
     crack_.erase(it);
-    crack_since_.erase(key);
+    const auto since = crack_since_.find(key);
+    const auto made = crack_faces_since_.find(since->second);
+    if (--made->second == 0) crack_faces_since_.erase(made);
+    crack_since_.erase(since);
   }
 }
 
