@@ -429,8 +429,9 @@ class CrackCutter {
   std::vector<mesh::TetId> Replace(mesh::TetId unit, const std::vector<mesh::TetVertices>& pieces);
   void Repart(const std::vector<mesh::VertexId>& origins);
   void AddCrack(const FaceKey& key) {
-    if (++crack_[key] == 1) {
-      crack_since_[key] = poses_;
+    CrackFace& face = crack_[key];
+    if (face.marks++ == 0) {
+      face.since = poses_;
       ++crack_faces_since_[poses_];
     }
   }
@@ -469,13 +470,17 @@ class CrackCutter {
   absl::flat_hash_map<EdgeKey, EdgePoint> edge_points_;               // by origins
   absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;  // by origins
   absl::flat_hash_set<mesh::VertexId> on_crack_;                      // origins
-  absl::flat_hash_map<FaceKey, int, FaceKeyHash> crack_;  // by origins, with how many mark it
-  // The poses applied, when each crack face was made, and when each group (by its root) began:
-  // a crack face made before every group there is now is the crack made before
+  // A crack face: how many mark it, and the pose it was made at.
+  struct CrackFace {
+    int marks = 0;
+    std::size_t since = 0;
+  };
+  absl::flat_hash_map<FaceKey, CrackFace, FaceKeyHash> crack_;  // by origins
+  // The poses applied, how many crack faces were made at each, and when each group (by its root)
+  // began: a crack face made before every group there is now is the crack made before
   // (OnTheCrackAlready).
   std::size_t poses_ = 0;
-  absl::flat_hash_map<FaceKey, std::size_t, FaceKeyHash> crack_since_;
-  std::map<std::size_t, std::size_t> crack_faces_since_;  // how many crack faces made at a pose
+  std::map<std::size_t, std::size_t> crack_faces_since_;
   absl::flat_hash_map<mesh::TetId, std::size_t> group_since_;
   absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;

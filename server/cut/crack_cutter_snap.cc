@@ -75,12 +75,11 @@ bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
     for (const TetId t : parting_.TetsAround(*mesh_, o)) {
       // An open unit's own crack faces are the crack being made, up to the blade.
       const auto owner = open_.find(UnitOf(t));
-      mesh::TetVertices c = mesh_->tet(t);
-      for (VertexId& v : c) v = parting_.Origin(v);
+      const mesh::TetVertices& c = mesh_->tet(t);
       for (const auto& f : mesh::kTetFaces) {
-        const FaceKey key = MakeFaceKey(c[f[0]], c[f[1]], c[f[2]]);
-        const auto since = crack_since_.find(key);
-        if (since == crack_since_.end() || since->second >= visit) continue;
+        const FaceKey key = parting_.OriginKey(c[f[0]], c[f[1]], c[f[2]]);
+        const auto face = crack_.find(key);
+        if (face == crack_.end() || face->second.since >= visit) continue;
         if (owner != open_.end() &&
             std::binary_search(owner->second.crack.begin(), owner->second.crack.end(), key)) {
           continue;

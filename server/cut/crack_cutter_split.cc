@@ -379,12 +379,10 @@ void CrackCutter::CountPieces(TetId source, std::size_t removed, std::size_t add
 void CrackCutter::RemoveCrack(const FaceKey& key) {
   const auto it = crack_.find(key);
   KERF_CHECK(it != crack_.end());
-  if (--it->second == 0) {
-    crack_.erase(it);
-    const auto since = crack_since_.find(key);
-    const auto made = crack_faces_since_.find(since->second);
+  if (--it->second.marks == 0) {
+    const auto made = crack_faces_since_.find(it->second.since);
     if (--made->second == 0) crack_faces_since_.erase(made);
-    crack_since_.erase(since);
+    crack_.erase(it);
   }
 }
 
