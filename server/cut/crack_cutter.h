@@ -18,7 +18,10 @@
 // point of the face, moved off the edge to the snap share. What is cut stays cut: a crossing
 // within kSnapReach of the tissue's edge there of a crack face made before (of a tet the blade
 // does not hold open) adds no point (OnTheCrackAlready), so a blade going back over its cut, or
-// coming in again where it came out, does not cut the pieces beside the crack again. The
+// coming in again where it came out, does not cut the pieces beside the crack again. A tet
+// every triangle of whose faces lies on the crack (the face rule: their corners are all on it)
+// holds by the largest of them not on the tissue's surface, kept off the crack for both tets at
+// it (HoldByAFaceOffTheCrack), so the cut frees no chip the blade did not cut around. The
 // tissue's edge length is the edge's own for the tissue's edges and that of the tet it was cut
 // from for a piece's edge (SnapShare), so a cut through pieces makes none finer than a cut through
 // tets. Points are kept as weights until a split uses them. Edges and faces are named by their
@@ -429,6 +432,7 @@ class CrackCutter {
   std::vector<mesh::TetId> Replace(mesh::TetId unit, const std::vector<mesh::TetVertices>& pieces);
   void Repart(const std::vector<mesh::VertexId>& origins);
   void AddCrack(const FaceKey& key) {
+    if (kept_off_.contains(key)) return;
     CrackFace& face = crack_[key];
     if (face.marks++ == 0) {
       face.since = poses_;
@@ -436,6 +440,11 @@ class CrackCutter {
     }
   }
   void RemoveCrack(const FaceKey& key);
+  // Where every triangle of the unit's faces lies on the crack (TriangleToHoldBy), keeps the
+  // one it holds by off the crack, for both units at it, and takes it out of `split`; returns
+  // its corners (their parting changes), if any.
+  std::vector<mesh::VertexId> HoldByAFaceOffTheCrack(const mesh::TetVertices& corners,
+                                                     const TetCrack& crack, CrackSplit* split);
 
   // The groups of units sharing points: they split together (deferred) and stay open together
   // (progressive), so a unit split from its own faces never meets one split finer.
@@ -476,6 +485,11 @@ class CrackCutter {
     std::size_t since = 0;
   };
   absl::flat_hash_map<FaceKey, CrackFace, FaceKeyHash> crack_;  // by origins
+  // Triangles kept off the crack though the face rule puts them on it (HoldByAFaceOffTheCrack),
+  // and by the face of the units they lie in (origins).
+  absl::flat_hash_set<FaceKey, FaceKeyHash> kept_off_;
+  absl::flat_hash_map<FaceKey, std::vector<std::array<mesh::VertexId, 3>>, FaceKeyHash>
+      kept_off_in_face_;
   // The poses applied, how many crack faces were made at each, and when each group (by its root)
   // began: a crack face made before every group there is now is the crack made before
   // (OnTheCrackAlready).

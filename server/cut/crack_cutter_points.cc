@@ -42,6 +42,9 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
       p.corner_on_crack[j] = on_crack_.contains(p.corners[j]);
     }
     const FaceKey key = MakeFaceKey(p.corners[0], p.corners[1], p.corners[2]);
+    if (const auto off = kept_off_in_face_.find(key); off != kept_off_in_face_.end()) {
+      p.kept_off = off->second;
+    }
     if (face_points_.contains(key)) {
       p.inside = FacePointVertex(key);
     } else if (const auto at =

@@ -130,7 +130,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   }
   const bool was_open = open_.contains(unit);
   if (split && split->kind == CrackSplitKind::kWhole && !was_open) {
-    std::vector<VertexId> to_part;
+    std::vector<VertexId> to_part = HoldByAFaceOffTheCrack(corners, crack, &*split);
     for (const auto& f : split->crack_faces) {
       AddCrack(MakeFaceKey(f[0], f[1], f[2]));
       to_part.insert(to_part.end(), f.begin(), f.end());
@@ -145,7 +145,11 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   }
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
   // between its points and the crack stay open until it moves on.
-  if (blade == nullptr) ReleaseWalledInPieces(crack, &*split);
+  std::vector<VertexId> held;
+  if (blade == nullptr) {
+    ReleaseWalledInPieces(crack, &*split);
+    held = HoldByAFaceOffTheCrack(corners, crack, &*split);
+  }
   // While the blade is in the unit, crack faces parting leaves shut are opened at their middle
   // (SplitUnits) and stay so as the blade moves. A split for good opens none: the crack's edge has
   // moved on, and the faces it leaves shut open by parting, or at the end (OpenShutCrackFaces).
@@ -178,7 +182,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   }
   // Parting can change only at vertices of the crack faces going or coming, and at those with
   // copies (the pieces name origins; the tets around them may use copies).
-  std::vector<VertexId> to_part;
+  std::vector<VertexId> to_part = std::move(held);
   if (was_open) {
     for (const FaceKey& key : open_.at(unit).crack) {
       RemoveCrack(key);
@@ -376,8 +380,44 @@ void CrackCutter::CountPieces(TetId source, std::size_t removed, std::size_t add
       statistics_.new_tets + (split(pieces) ? pieces : 0) - (split(before) ? before : 0);
 }
 
+std::vector<VertexId> CrackCutter::HoldByAFaceOffTheCrack(const mesh::TetVertices& corners,
+                                                          const TetCrack& crack,
+                                                          CrackSplit* split) {
+  std::array<bool, 4> outer;
+  for (int k = 0; k < 4; ++k) {
+    const auto& f = mesh::kTetFaces[k];
+    outer[k] = surface_.HasFace(MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]));
+  }
+  const std::optional<std::array<VertexId, 3>> hold = TriangleToHoldBy(
+      crack, *split, outer, [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); });
+  if (!hold) return {};
+  const FaceKey key = MakeFaceKey((*hold)[0], (*hold)[1], (*hold)[2]);
+  for (int k = 0; k < 4; ++k) {
+    const std::vector<VertexId>& on_face = crack.face_vertices[k];
+    if (std::all_of(hold->begin(), hold->end(), [&](VertexId v) {
+          return std::find(on_face.begin(), on_face.end(), v) != on_face.end();
+        })) {
+      const auto& f = mesh::kTetFaces[k];
+      kept_off_in_face_[MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]])].push_back(*hold);
+      break;
+    }
+  }
+  kept_off_.insert(key);
+  // The unit beside may have put it on the crack already.
+  if (const auto it = crack_.find(key); it != crack_.end()) {
+    const auto made = crack_faces_since_.find(it->second.since);
+    if (--made->second == 0) crack_faces_since_.erase(made);
+    crack_.erase(it);
+  }
+  std::erase_if(split->crack_faces, [&](const std::array<VertexId, 3>& c) {
+    return MakeFaceKey(c[0], c[1], c[2]) == key;
+  });
+  return {hold->begin(), hold->end()};
+}
+
 void CrackCutter::RemoveCrack(const FaceKey& key) {
   const auto it = crack_.find(key);
+  if (it == crack_.end() && kept_off_.contains(key)) return;  // taken off for both units
   KERF_CHECK(it != crack_.end());
   if (--it->second.marks == 0) {
     const auto made = crack_faces_since_.find(it->second.since);

@@ -1,6 +1,7 @@
 #include "cut/crack_split.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
 
@@ -480,6 +481,24 @@ bool OpenCrackFace(CrackSplit* split, const Triangle& face, VertexId point) {
     for (const VertexId o : off) split->tets.push_back({point, a, b, o});
   }
   return true;
+}
+
+std::optional<Triangle> TriangleToHoldBy(const TetCrack& crack, const CrackSplit& split,
+                                         const std::array<bool, 4>& outer,
+                                         const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  std::vector<Triangle> cracked;
+  for (const Triangle& c : split.crack_faces) cracked.push_back(Sorted(c));
+  std::sort(cracked.begin(), cracked.end());
+  std::optional<Triangle> largest;
+  double largest_area = -1;
+  for (int k = 0; k < 4; ++k) {
+    for (const Triangle& t : crack.faces[k].triangles) {
+      if (!std::binary_search(cracked.begin(), cracked.end(), Sorted(t))) return std::nullopt;
+      const double area = (rest(t[1]) - rest(t[0])).cross(rest(t[2]) - rest(t[0])).norm();
+      if (!outer[k] && area > largest_area) largest = t, largest_area = area;
+    }
+  }
+  return largest;
 }
 
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split) {

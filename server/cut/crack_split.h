@@ -64,6 +64,15 @@ CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
 // points at once). Each such group joins one group beside it: the crack faces between them go.
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split);
 
+// Where every triangle of the tet's faces lies on the crack (its corners all on the crack, the
+// face rule puts each on it), the tet would be cut free of every tet beside it though the blade
+// never cut around it: the largest of those triangles (rest positions) on a face not in `outer`
+// (the tissue's surface), which the caller keeps off the crack (for the tet beside it too) so
+// the tet holds there. nullopt otherwise, or if every face is outer.
+std::optional<std::array<mesh::VertexId, 3>> TriangleToHoldBy(
+    const TetCrack& crack, const CrackSplit& split, const std::array<bool, 4>& outer,
+    const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
+
 // How many of the split's tets have `face` (its vertices in any order) when it is a crack face:
 // 2 inside the tet, 1 on one of its faces (a triangle of the face rule on the crack), 0 if it
 // is no crack face of the split.

@@ -104,10 +104,19 @@ std::vector<VertexId> PointsOnCrack(const FacePoints& p) {
 FaceSplit SplitFace(const FacePoints& p) {
   FaceSplit split = SplitFaceTriangles(p);
   const std::vector<VertexId> on_crack = PointsOnCrack(p);
+  const auto kept_off = [&](std::array<VertexId, 3> t) {
+    std::sort(t.begin(), t.end(), [](VertexId a, VertexId b) { return Index(a) < Index(b); });
+    return std::any_of(p.kept_off.begin(), p.kept_off.end(), [&](std::array<VertexId, 3> k) {
+      std::sort(k.begin(), k.end(), [](VertexId a, VertexId b) { return Index(a) < Index(b); });
+      return k == t;
+    });
+  };
   for (const std::array<VertexId, 3>& t : split.triangles) {
-    if (std::all_of(t.begin(), t.end(), [&](VertexId v) {
-          return std::find(on_crack.begin(), on_crack.end(), v) != on_crack.end();
-        })) {
+    if (std::all_of(t.begin(), t.end(),
+                    [&](VertexId v) {
+                      return std::find(on_crack.begin(), on_crack.end(), v) != on_crack.end();
+                    }) &&
+        !kept_off(t)) {
       split.on_crack.push_back(t);
     }
   }

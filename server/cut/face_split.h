@@ -19,7 +19,7 @@
 //   none:             the face whole; its edges between corners on the crack are trace.
 // A triangle of the split whose three vertices are on the crack (its points, and its corners on
 // the crack) lies on the crack: the blade swept in the face's plane there (a whole face when
-// its three corners are on the crack).
+// its three corners are on the crack), unless the caller keeps it off.
 #pragma once
 
 #include <array>
@@ -36,6 +36,9 @@ struct FacePoints {
   std::array<std::optional<mesh::VertexId>, 3> on_edge;
   std::optional<mesh::VertexId> inside;  // strictly inside the face
   std::array<bool, 3> corner_on_crack = {false, false, false};
+  // Triangles of the face's split that stay off the crack though their corners are on it (they
+  // would wall a tet in: see CrackCutter), each with its vertices in any order.
+  std::vector<std::array<mesh::VertexId, 3>> kept_off;
 
   friend bool operator==(const FacePoints&, const FacePoints&) = default;
 };

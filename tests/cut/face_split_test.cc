@@ -19,7 +19,7 @@ const VertexId kInside{20};
 
 FacePoints Points(std::array<bool, 3> edges, bool inside = false,
                   std::array<bool, 3> corners_on_crack = {false, false, false}) {
-  FacePoints p{{kA, kB, kC}, {}, std::nullopt, corners_on_crack};
+  FacePoints p{{kA, kB, kC}, {}, std::nullopt, corners_on_crack, {}};
   for (int k = 0; k < 3; ++k) {
     if (edges[k]) p.on_edge[k] = E(k);
   }
@@ -112,6 +112,22 @@ TEST(FaceSplit, AFaceWithItsCornersOnTheCrackLiesOnIt) {
   const FaceSplit three = SplitFace(Points({false, false, false}, false, {true, true, true}));
   EXPECT_EQ(three.trace.size(), 3u);
   EXPECT_EQ(three.on_crack.size(), 1u);
+}
+
+// A triangle kept off the crack stays off it, in whatever order its vertices are named; the
+// others at the face still lie on it, and the trace is the same.
+TEST(FaceSplit, ATriangleKeptOffTheCrackIsNotOnIt) {
+  FacePoints whole = Points({false, false, false}, false, {true, true, true});
+  whole.kept_off = {{kC, kA, kB}};
+  EXPECT_TRUE(SplitFace(whole).on_crack.empty());
+  EXPECT_EQ(SplitFace(whole).trace.size(), 3u);
+  FacePoints fan = Points({false, false, false}, true, {true, true, true});
+  const FaceSplit on = SplitFace(fan);
+  ASSERT_EQ(on.on_crack.size(), 3u);
+  fan.kept_off = {{on.on_crack[1][2], on.on_crack[1][0], on.on_crack[1][1]}};
+  const FaceSplit off = SplitFace(fan);
+  EXPECT_EQ(off.on_crack, (std::vector<std::array<VertexId, 3>>{on.on_crack[0], on.on_crack[2]}));
+  EXPECT_EQ(off.trace, on.trace);
 }
 
 }  // namespace
