@@ -20,8 +20,9 @@
 // does not hold open) adds no point (OnTheCrackAlready), so a blade going back over its cut, or
 // coming in again where it came out, does not cut the pieces beside the crack again. A tet
 // every triangle of whose faces lies on the crack (the face rule: their corners are all on it)
-// holds by the largest of them not on the tissue's surface, kept off the crack for both tets at
-// it (HoldByAFaceOffTheCrack), so the cut frees no chip the blade did not cut around. The
+// holds by the largest of them not on the tissue's surface (beside a tet with a corner off the
+// crack where it can), kept off the crack for both tets at it (HoldByAFaceOffTheCrack), so the
+// cut frees no chip the blade did not cut around. The
 // tissue's edge length is the edge's own for the tissue's edges and that of the tet it was cut
 // from for a piece's edge (SnapShare), so a cut through pieces makes none finer than a cut through
 // tets. Points are kept as weights until a split uses them. Edges and faces are named by their
@@ -295,7 +296,7 @@ class CrackCutter {
   // kSnapReach of the smallest mean edge of `units` (the tissue's, for pieces).
   double Reach(const std::vector<mesh::TetId>& units) const;
   // Whether `v` may snap onto the crack: it lies within Reach of its units of the step's swept
-  // surface, no unit around it has its other three corners on the crack (a chip), and, for a
+  // surface, no piece around it has its other three corners on the crack (a chip), and, for a
   // crossing the blade swept (`from`), snapping it would not lay the crack on the tissue's surface
   // (the blade passing through it to the least snapping, it may).
   bool MaySnap(mesh::VertexId v, EdgeCrossingFrom from = EdgeCrossingFrom::kSweep) const;

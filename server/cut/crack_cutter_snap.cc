@@ -220,11 +220,15 @@ bool CrackCutter::MaySnap(VertexId v, EdgeCrossingFrom from) const {
       SnapWouldLayCrackOnSurface(v, reach)) {
     return false;
   }
-  // Nor may it be the last corner of a tet to come onto the crack: every face of the tet would
-  // lie on the crack, and the tet be cut free whole.
+  // Nor may it be the last corner of a piece (a unit with a point the cut made among its
+  // corners) to come onto the crack: every face of the piece would lie on the crack, and pieces so
+  // walled in, with pieces beside them, are cut free together. A tissue's tet may: it holds by a
+  // face kept off the crack (HoldByAFaceOffTheCrack).
   return std::none_of(units.begin(), units.end(), [&](TetId u) {
     const mesh::TetVertices corners = CornersOf(u);
-    return std::all_of(corners.begin(), corners.end(),
+    return std::any_of(corners.begin(), corners.end(),
+                       [&](VertexId c) { return recipe_.contains(c); }) &&
+           std::all_of(corners.begin(), corners.end(),
                        [&](VertexId c) { return c == v || on_crack_.contains(c); });
   });
 }

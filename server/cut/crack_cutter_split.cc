@@ -383,13 +383,26 @@ void CrackCutter::CountPieces(TetId source, std::size_t removed, std::size_t add
 std::vector<VertexId> CrackCutter::HoldByAFaceOffTheCrack(const mesh::TetVertices& corners,
                                                           const TetCrack& crack,
                                                           CrackSplit* split) {
-  std::array<bool, 4> outer;
-  for (int k = 0; k < 4; ++k) {
+  // Not by the tissue's surface; rather beside a tet with a corner off the crack than beside one
+  // that may be walled in too (the two would be cut free together).
+  const auto preference = [&](int k) {
     const auto& f = mesh::kTetFaces[k];
-    outer[k] = surface_.HasFace(MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]));
-  }
-  const std::optional<std::array<VertexId, 3>> hold = TriangleToHoldBy(
-      crack, *split, outer, [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); });
+    const FaceKey face = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
+    if (surface_.HasFace(face)) return 0;
+    const std::vector<TetId> beside = UnitsAround({face[0], face[1], face[2]});
+    return std::any_of(beside.begin(), beside.end(),
+                       [&](TetId u) {
+                         const mesh::TetVertices c = CornersOf(u);
+                         return c != corners && std::all_of(c.begin(), c.end(), [&](VertexId v) {
+                                  return on_crack_.contains(v);
+                                });
+                       })
+               ? 1
+               : 2;
+  };
+  const std::optional<std::array<VertexId, 3>> hold =
+      TriangleToHoldBy(crack, *split, preference,
+                       [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); });
   if (!hold) return {};
   const FaceKey key = MakeFaceKey((*hold)[0], (*hold)[1], (*hold)[2]);
   for (int k = 0; k < 4; ++k) {

@@ -484,21 +484,28 @@ bool OpenCrackFace(CrackSplit* split, const Triangle& face, VertexId point) {
 }
 
 std::optional<Triangle> TriangleToHoldBy(const TetCrack& crack, const CrackSplit& split,
-                                         const std::array<bool, 4>& outer,
+                                         const std::function<int(int)>& preference,
                                          const std::function<Eigen::Vector3d(VertexId)>& rest) {
   std::vector<Triangle> cracked;
   for (const Triangle& c : split.crack_faces) cracked.push_back(Sorted(c));
   std::sort(cracked.begin(), cracked.end());
-  std::optional<Triangle> largest;
-  double largest_area = -1;
-  for (int k = 0; k < 4; ++k) {
-    for (const Triangle& t : crack.faces[k].triangles) {
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.triangles) {
       if (!std::binary_search(cracked.begin(), cracked.end(), Sorted(t))) return std::nullopt;
-      const double area = (rest(t[1]) - rest(t[0])).cross(rest(t[2]) - rest(t[0])).norm();
-      if (!outer[k] && area > largest_area) largest = t, largest_area = area;
     }
   }
-  return largest;
+  std::optional<Triangle> best;
+  std::pair<int, double> best_rank = {0, 0};  // (preference, area)
+  for (int k = 0; k < 4; ++k) {
+    const int preferred = preference(k);
+    if (preferred <= 0) continue;
+    for (const Triangle& t : crack.faces[k].triangles) {
+      const std::pair<int, double> rank = {
+          preferred, (rest(t[1]) - rest(t[0])).cross(rest(t[2]) - rest(t[0])).norm()};
+      if (rank > best_rank) best = t, best_rank = rank;
+    }
+  }
+  return best;
 }
 
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split) {

@@ -121,25 +121,38 @@ TEST(CrackCutter, AVertexFarFromTheBladeInItsTetsIsNotSnappedOntoTheCrack) {
 
 // A flat tet, two corners 0.005 below the plane z = 0 and two 0.005 above, swept by a blade in
 // that plane: every corner lies on the blade's path to the least snapping (so the tissue's surface
-// keeps none off the crack), but the last one to snap would put all four on the crack and cut the
-// tet free whole (a chip). Three snap; the fourth's edges get points, and the tet is split along
-// the blade.
-TEST(CrackCutter, NoTetIsCutFreeWholeBySnappingAllItsCorners) {
-  TetMesh m;
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, -0.005), Eigen::Vector3d(1, 0, 0.005),
-                                   Eigen::Vector3d(0, 1, 0.005), Eigen::Vector3d(1, 1, -0.005)}) {
-    m.AddVertex(p);
+// keeps none off the crack), and all four snap, which puts every face of it on the crack. Held
+// below by a tet beside face 0-1-3, it holds by that face (kept off the crack): no chip is cut
+// free. Alone, it has no face to hold by, and the whole mesh is it.
+TEST(CrackCutter, ATetWithEveryCornerOnTheCrackHoldsByAFaceOffIt) {
+  for (const bool held : {true, false}) {
+    SCOPED_TRACE(held ? "held below" : "alone");
+    TetMesh m;
+    const std::array<Eigen::Vector3d, 4> flat = {
+        Eigen::Vector3d(0, 0, -0.005), Eigen::Vector3d(1, 0, 0.005), Eigen::Vector3d(0, 1, 0.005),
+        Eigen::Vector3d(1, 1, -0.005)};
+    for (const Eigen::Vector3d& p : flat) m.AddVertex(p);
+    ASSERT_TRUE(
+        m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)})
+            .ok());
+    if (held) {
+      // Beside face 0-1-3, on the side away from corner 2, an edge's length off.
+      const Eigen::Vector3d normal = (flat[1] - flat[0]).cross(flat[3] - flat[0]).normalized();
+      const double side = normal.dot(flat[2] - flat[0]) > 0 ? -1 : 1;
+      m.AddVertex((flat[0] + flat[1] + flat[3]) / 3 + side * normal);
+      ASSERT_TRUE(
+          m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(3), mesh::VertexId(4)})
+              .ok());
+    }
+    CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m),
+                                              {.max_length = 10, .max_step = 10, .max_speed = 100});
+    ASSERT_TRUE(cutter.ApplyPose({0, {-1, -1, 0}, {-1, 2, 0}}).ok());
+    ASSERT_TRUE(cutter.ApplyPose({0.1, {2, -1, 0}, {2, 2, 0}}).ok());
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_EQ(cutter.statistics().snapped_vertices, 4u);
+    EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
   }
-  ASSERT_TRUE(
-      m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)}).ok());
-  CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m),
-                                            {.max_length = 10, .max_step = 10, .max_speed = 100});
-  ASSERT_TRUE(cutter.ApplyPose({0, {-1, -1, 0}, {-1, 2, 0}}).ok());
-  ASSERT_TRUE(cutter.ApplyPose({0.1, {2, -1, 0}, {2, 2, 0}}).ok());
-  cutter.Finish();
-  ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-  EXPECT_EQ(cutter.statistics().snapped_vertices, 3u);
-  EXPECT_GT(m.tet_count(), 1u);
 }
 
 // A blade grazing the tissue: its tip 0.05 of an edge under the top of a lattice, sweeping

@@ -384,10 +384,14 @@ TEST(CrackSplit, ACornerOnTheCrackCutOffIsNotWalledIn) {
   ExpectNoPieceWalledIn(crack, *split);
 }
 
+std::function<int(int)> Preferring(std::array<int, 4> preference) {
+  return [preference](int k) { return preference[k]; };
+}
+
 // Every corner on the crack, nothing else: the face rule puts each face on the crack, and the
 // cone spanning the crack (its inner faces let out) would leave the tet cut free of all beside
-// it. It holds by its largest face that is not the tissue's surface.
-TEST(CrackSplit, ATetWhoseFacesAllLieOnTheCrackHoldsByItsLargestInnerFace) {
+// it. It holds by its largest face of the highest preference.
+TEST(CrackSplit, ATetWhoseFacesAllLieOnTheCrackHoldsByItsLargestPreferredFace) {
   OneTet tet;
   for (int i = 0; i < 4; ++i) tet.CornerOnCrack(i);
   const TetCrack crack = tet.Crack();
@@ -402,16 +406,20 @@ TEST(CrackSplit, ATetWhoseFacesAllLieOnTheCrackHoldsByItsLargestInnerFace) {
   const int largest =
       static_cast<int>(std::max_element(areas.begin(), areas.end()) - areas.begin());
   const std::optional<Triangle> hold =
-      TriangleToHoldBy(crack, split, {false, false, false, false}, tet.RestOf());
+      TriangleToHoldBy(crack, split, Preferring({2, 2, 2, 2}), tet.RestOf());
   ASSERT_TRUE(hold);
   EXPECT_EQ(Sorted(*hold), Sorted(crack.faces[largest].triangles.front()));
-  // The largest on the tissue's surface: the next largest.
-  std::array<bool, 4> outer{};
-  outer[largest] = true;
-  const std::optional<Triangle> inner = TriangleToHoldBy(crack, split, outer, tet.RestOf());
-  ASSERT_TRUE(inner);
-  EXPECT_NE(Sorted(*inner), Sorted(*hold));
-  EXPECT_FALSE(TriangleToHoldBy(crack, split, {true, true, true, true}, tet.RestOf()));
+  // The largest less preferred (beside a tet that may be walled in too), or not at all (the
+  // tissue's surface): another.
+  for (const int lower : {0, 1}) {
+    std::array<int, 4> preference = {2, 2, 2, 2};
+    preference[largest] = lower;
+    const std::optional<Triangle> other =
+        TriangleToHoldBy(crack, split, Preferring(preference), tet.RestOf());
+    ASSERT_TRUE(other);
+    EXPECT_NE(Sorted(*other), Sorted(*hold));
+  }
+  EXPECT_FALSE(TriangleToHoldBy(crack, split, Preferring({0, 0, 0, 0}), tet.RestOf()));
 }
 
 // Three corners on the crack: the face between them lies on it, the tet holds by the others.
@@ -422,7 +430,7 @@ TEST(CrackSplit, ATetWithAFaceOffTheCrackHoldsAsItIs) {
   const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
   ASSERT_TRUE(split);
   EXPECT_EQ(split->crack_faces.size(), 1u);
-  EXPECT_FALSE(TriangleToHoldBy(crack, *split, {false, false, false, false}, tet.RestOf()));
+  EXPECT_FALSE(TriangleToHoldBy(crack, *split, Preferring({2, 2, 2, 2}), tet.RestOf()));
 }
 
 // The smallest dihedral angle of the cone from the apex at `weights` over the faces' triangles.
