@@ -221,6 +221,12 @@ class CrackCutter {
     Eigen::Vector4d apex;          // the crack's point inside: the tip, or the chord's middle
     bool tip_inside = false;
   };
+  // A crack face: how many mark it, and the pose it was made at.
+  struct CrackFace {
+    int marks = 0;
+    std::size_t since = 0;
+  };
+  using CrackFaces = absl::flat_hash_map<FaceKey, CrackFace, FaceKeyHash>;
 
   CrackCutter(mesh::TetMesh* mesh, BladeCrossings crossings, const BladeLimits& limits,
               const CrackCutterOptions& options)
@@ -441,6 +447,8 @@ class CrackCutter {
     }
   }
   void RemoveCrack(const FaceKey& key);
+  // Takes the face off the crack whatever marks it, with its count in crack_faces_since_.
+  void EraseCrack(CrackFaces::iterator face);
   // Where every triangle of the unit's faces lies on the crack (TriangleToHoldBy), keeps the
   // one it holds by off the crack, for both units at it, and takes it out of `split`; returns
   // its corners (their parting changes), if any.
@@ -480,12 +488,7 @@ class CrackCutter {
   absl::flat_hash_map<EdgeKey, EdgePoint> edge_points_;               // by origins
   absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;  // by origins
   absl::flat_hash_set<mesh::VertexId> on_crack_;                      // origins
-  // A crack face: how many mark it, and the pose it was made at.
-  struct CrackFace {
-    int marks = 0;
-    std::size_t since = 0;
-  };
-  absl::flat_hash_map<FaceKey, CrackFace, FaceKeyHash> crack_;  // by origins
+  CrackFaces crack_;                                                  // by origins
   // Triangles kept off the crack though the face rule puts them on it (HoldByAFaceOffTheCrack),
   // and by the face of the units they lie in (origins).
   absl::flat_hash_set<FaceKey, FaceKeyHash> kept_off_;

@@ -400,43 +400,34 @@ std::vector<VertexId> CrackCutter::HoldByAFaceOffTheCrack(const mesh::TetVertice
                ? 1
                : 2;
   };
-  const std::optional<std::array<VertexId, 3>> hold =
+  const std::optional<HoldingTriangle> hold =
       TriangleToHoldBy(crack, *split, preference,
                        [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); });
   if (!hold) return {};
-  const FaceKey key = MakeFaceKey((*hold)[0], (*hold)[1], (*hold)[2]);
-  for (int k = 0; k < 4; ++k) {
-    const std::vector<VertexId>& on_face = crack.face_vertices[k];
-    if (std::all_of(hold->begin(), hold->end(), [&](VertexId v) {
-          return std::find(on_face.begin(), on_face.end(), v) != on_face.end();
-        })) {
-      const auto& f = mesh::kTetFaces[k];
-      kept_off_in_face_[MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]])].push_back(*hold);
-      break;
-    }
-  }
+  const std::array<VertexId, 3>& t = hold->triangle;
+  const FaceKey key = MakeFaceKey(t[0], t[1], t[2]);
+  const auto& f = mesh::kTetFaces[hold->face];
+  kept_off_in_face_[MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]])].push_back(t);
   kept_off_.insert(key);
   // The unit beside may have put it on the crack already.
-  if (const auto it = crack_.find(key); it != crack_.end()) {
-    const auto made = crack_faces_since_.find(it->second.since);
-    if (--made->second == 0) crack_faces_since_.erase(made);
-    crack_.erase(it);
-  }
+  if (const auto it = crack_.find(key); it != crack_.end()) EraseCrack(it);
   std::erase_if(split->crack_faces, [&](const std::array<VertexId, 3>& c) {
     return MakeFaceKey(c[0], c[1], c[2]) == key;
   });
-  return {hold->begin(), hold->end()};
+  return {t.begin(), t.end()};
 }
 
 void CrackCutter::RemoveCrack(const FaceKey& key) {
   const auto it = crack_.find(key);
   if (it == crack_.end() && kept_off_.contains(key)) return;  // taken off for both units
   KERF_CHECK(it != crack_.end());
-  if (--it->second.marks == 0) {
-    const auto made = crack_faces_since_.find(it->second.since);
-    if (--made->second == 0) crack_faces_since_.erase(made);
-    crack_.erase(it);
-  }
+  if (--it->second.marks == 0) EraseCrack(it);
+}
+
+void CrackCutter::EraseCrack(CrackFaces::iterator face) {
+  const auto made = crack_faces_since_.find(face->second.since);
+  if (--made->second == 0) crack_faces_since_.erase(made);
+  crack_.erase(face);
 }
 
 void CrackCutter::Repart(const std::vector<VertexId>& origins) {

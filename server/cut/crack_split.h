@@ -67,9 +67,14 @@ void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split);
 // Where every triangle of the tet's faces lies on the crack (its corners all on the crack, the
 // face rule puts each on it), the tet would be cut free of every tet beside it though the blade
 // never cut around it: the triangle to keep off the crack (for the tet beside it too) so that the
-// tet holds there. Of the faces k with the highest `preference(k)` (0: none of it, such as the
-// tissue's surface), the largest triangle (rest positions). nullopt otherwise.
-std::optional<std::array<mesh::VertexId, 3>> TriangleToHoldBy(
+// tet holds there, and the face k it lies in. Of the faces k with the highest `preference(k)`
+// (0: none of it, such as the tissue's surface), the largest triangle (rest positions). nullopt
+// otherwise.
+struct HoldingTriangle {
+  std::array<mesh::VertexId, 3> triangle;
+  int face = 0;
+};
+std::optional<HoldingTriangle> TriangleToHoldBy(
     const TetCrack& crack, const CrackSplit& split, const std::function<int(int)>& preference,
     const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 

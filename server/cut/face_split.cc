@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "base/check.h"
+#include "cut/element_keys.h"
 
 namespace kerf::cut {
 namespace {
@@ -104,11 +105,9 @@ std::vector<VertexId> PointsOnCrack(const FacePoints& p) {
 FaceSplit SplitFace(const FacePoints& p) {
   FaceSplit split = SplitFaceTriangles(p);
   const std::vector<VertexId> on_crack = PointsOnCrack(p);
-  const auto kept_off = [&](std::array<VertexId, 3> t) {
-    std::sort(t.begin(), t.end(), [](VertexId a, VertexId b) { return Index(a) < Index(b); });
-    return std::any_of(p.kept_off.begin(), p.kept_off.end(), [&](std::array<VertexId, 3> k) {
-      std::sort(k.begin(), k.end(), [](VertexId a, VertexId b) { return Index(a) < Index(b); });
-      return k == t;
+  const auto kept_off = [&](const std::array<VertexId, 3>& t) {
+    return std::any_of(p.kept_off.begin(), p.kept_off.end(), [&](const auto& k) {
+      return MakeFaceKey(k[0], k[1], k[2]) == MakeFaceKey(t[0], t[1], t[2]);
     });
   };
   for (const std::array<VertexId, 3>& t : split.triangles) {

@@ -405,19 +405,20 @@ TEST(CrackSplit, ATetWhoseFacesAllLieOnTheCrackHoldsByItsLargestPreferredFace) {
   for (int k = 0; k < 4; ++k) areas[k] = area(crack.faces[k].triangles.front());
   const int largest =
       static_cast<int>(std::max_element(areas.begin(), areas.end()) - areas.begin());
-  const std::optional<Triangle> hold =
+  const std::optional<HoldingTriangle> hold =
       TriangleToHoldBy(crack, split, Preferring({2, 2, 2, 2}), tet.RestOf());
   ASSERT_TRUE(hold);
-  EXPECT_EQ(Sorted(*hold), Sorted(crack.faces[largest].triangles.front()));
+  EXPECT_EQ(Sorted(hold->triangle), Sorted(crack.faces[largest].triangles.front()));
+  EXPECT_EQ(hold->face, largest);
   // The largest less preferred (beside a tet that may be walled in too), or not at all (the
   // tissue's surface): another.
   for (const int lower : {0, 1}) {
     std::array<int, 4> preference = {2, 2, 2, 2};
     preference[largest] = lower;
-    const std::optional<Triangle> other =
+    const std::optional<HoldingTriangle> other =
         TriangleToHoldBy(crack, split, Preferring(preference), tet.RestOf());
     ASSERT_TRUE(other);
-    EXPECT_NE(Sorted(*other), Sorted(*hold));
+    EXPECT_NE(Sorted(other->triangle), Sorted(hold->triangle));
   }
   EXPECT_FALSE(TriangleToHoldBy(crack, split, Preferring({0, 0, 0, 0}), tet.RestOf()));
 }
