@@ -353,15 +353,18 @@ void CrackCutter::CloseUnitsTheBladeLeft() {
 }
 
 void CrackCutter::CloseUnits(const std::vector<TetId>& units) {
+  std::vector<TetId> pieces;
   for (const TetId u : units) {
     const auto it = open_.find(u);
     if (it == open_.end()) continue;
     for (const TetId p : it->second.pieces) owner_.erase(p);
+    pieces.insert(pieces.end(), it->second.pieces.begin(), it->second.pieces.end());
     // Its apex and opening points, if it has them, are ordinary vertices now.
     temporary_.erase(ApexPlace(u));
     for (const FaceKey& key : it->second.openings) temporary_.erase(OpeningPlace(u, key));
     open_.erase(it);
   }
+  HoldChips(std::move(pieces));
 }
 
 }  // namespace kerf::cut

@@ -18,12 +18,12 @@
 // point of the face, moved off the edge to the snap share. What is cut stays cut: a crossing
 // within kSnapReach of the tissue's edge there of a crack face made before (of a tet the blade
 // does not hold open) adds no point (OnTheCrackAlready), so a blade going back over its cut, or
-// coming in again where it came out, does not cut the pieces beside the crack again. A tet
-// every triangle of whose faces lies on the crack (the face rule: their corners are all on it)
-// holds by the largest of them not on the tissue's surface (beside a tet with a corner off the
-// crack where it can), kept off the crack for both tets at it (HoldByAFaceOffTheCrack), so the
-// cut frees no chip the blade did not cut around. The
-// tissue's edge length is the edge's own for the tissue's edges and that of the tet it was cut
+// coming in again where it came out, does not cut the pieces beside the crack again. A chip (a
+// few tets joined through faces off the crack, every corner of them on the crack: snapped onto
+// it, or points the cut made) would be cut free by the face rule though the blade never cut
+// around it; it holds by its largest crack face beside a tet with a corner off the crack, kept
+// off the crack for both sides (HoldChips), so the cut frees nothing the blade did not cut off.
+// The tissue's edge length is the edge's own for the tissue's edges and that of the tet it was cut
 // from for a piece's edge (SnapShare), so a cut through pieces makes none finer than a cut through
 // tets. Points are kept as weights until a split uses them. Edges and faces are named by their
 // vertices' origins (cut/star_parting.h), so the two lips of a crack share their points.
@@ -302,9 +302,8 @@ class CrackCutter {
   // kSnapReach of the smallest mean edge of `units` (the tissue's, for pieces).
   double Reach(const std::vector<mesh::TetId>& units) const;
   // Whether `v` may snap onto the crack: it lies within Reach of its units of the step's swept
-  // surface, no piece around it has its other three corners on the crack (a chip), and, for a
-  // crossing the blade swept (`from`), snapping it would not lay the crack on the tissue's surface
-  // (the blade passing through it to the least snapping, it may).
+  // surface and, for a crossing the blade swept (`from`), snapping it would not lay the crack on
+  // the tissue's surface (the blade passing through it to the least snapping, it may).
   bool MaySnap(mesh::VertexId v, EdgeCrossingFrom from = EdgeCrossingFrom::kSweep) const;
   // Whether snapping `v`, a vertex of the tissue's surface, would lay the crack on the surface
   // and lose what the blade cut under it: the tip's path passes within `reach` (m) of the point
@@ -449,11 +448,6 @@ class CrackCutter {
   void RemoveCrack(const FaceKey& key);
   // Takes the face off the crack whatever marks it, with its count in crack_faces_since_.
   void EraseCrack(CrackFaces::iterator face);
-  // Where every triangle of the unit's faces lies on the crack (TriangleToHoldBy), keeps the
-  // one it holds by off the crack, for both units at it, and takes it out of `split`; returns
-  // its corners (their parting changes), if any.
-  std::vector<mesh::VertexId> HoldByAFaceOffTheCrack(const mesh::TetVertices& corners,
-                                                     const TetCrack& crack, CrackSplit* split);
 
   // The groups of units sharing points: they split together (deferred) and stay open together
   // (progressive), so a unit split from its own faces never meets one split finer.
@@ -468,6 +462,23 @@ class CrackCutter {
   void CloseUnitsTheBladeLeft();
   // Their pieces become units of their own.
   void CloseUnits(const std::vector<mesh::TetId>& units);
+  // Whether `v` lies on the crack: snapped onto it, or a point the cut made.
+  bool OnTheCrack(mesh::VertexId v) const;
+  // The chip `seed` is in: the tets joined to it through faces not on the crack, if they are
+  // at most a few, all their corners lie on the crack, none is a piece of a unit the blade is
+  // in, and they are not the whole tissue. Marks the tets it looks at in `seen`.
+  std::optional<std::vector<mesh::TetId>> ChipAt(mesh::TetId seed,
+                                                 absl::flat_hash_set<mesh::TetId>* seen) const;
+  // The crack face (origins) a chip holds by: its largest, rather one beside a tet with a
+  // corner off the crack.
+  std::optional<FaceKey> FaceToHoldChipBy(const std::vector<mesh::TetId>& chip) const;
+  // The faces (origins) of the units with `triangle` in one of their faces: a unit of its own
+  // whose face it is, and an open unit's face whose points it is on.
+  std::vector<FaceKey> UnitFacesWith(const FaceKey& triangle) const;
+  // Each chip the tets `seeds` are in holds by a face kept off the crack for both sides: the
+  // crack walled it in (its corners snapped onto the crack) where the blade did not cut around
+  // it, so the cut frees nothing the blade did not cut off.
+  void HoldChips(std::vector<mesh::TetId> seeds);
   // Once the blade is withdrawn: a crack face inside the tissue none of whose corners the crack
   // parts (its corners all lie on the crack's front, where the front turns) cannot open; a point
   // in its middle, on the crack and parted, opens it.
@@ -489,8 +500,8 @@ class CrackCutter {
   absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;  // by origins
   absl::flat_hash_set<mesh::VertexId> on_crack_;                      // origins
   CrackFaces crack_;                                                  // by origins
-  // Triangles kept off the crack though the face rule puts them on it (HoldByAFaceOffTheCrack),
-  // and by the face of the units they lie in (origins).
+  // Triangles kept off the crack though the face rule puts them on it (HoldChips), and by the
+  // faces of the units they lie in (origins).
   absl::flat_hash_set<FaceKey, FaceKeyHash> kept_off_;
   absl::flat_hash_map<FaceKey, std::vector<std::array<mesh::VertexId, 3>>, FaceKeyHash>
       kept_off_in_face_;

@@ -216,21 +216,8 @@ bool CrackCutter::MaySnap(VertexId v, EdgeCrossingFrom from) const {
   // stays off the crack where the crack would then lie on the surface, and what the blade cut
   // under it be lost. Where the blade lay across an edge and left it, the pieces around stood on
   // its point: that snaps as anywhere, so the crack does not jump as the blade goes.
-  if (from == EdgeCrossingFrom::kSweep && distance > kMinSnapFraction / kSnapReach * reach &&
-      SnapWouldLayCrackOnSurface(v, reach)) {
-    return false;
-  }
-  // Nor may it be the last corner of a piece (a unit with a point the cut made among its
-  // corners) to come onto the crack: every face of the piece would lie on the crack, and pieces so
-  // walled in, with pieces beside them, are cut free together. A tissue's tet may: it holds by a
-  // face kept off the crack (HoldByAFaceOffTheCrack).
-  return std::none_of(units.begin(), units.end(), [&](TetId u) {
-    const mesh::TetVertices corners = CornersOf(u);
-    return std::any_of(corners.begin(), corners.end(),
-                       [&](VertexId c) { return recipe_.contains(c); }) &&
-           std::all_of(corners.begin(), corners.end(),
-                       [&](VertexId c) { return c == v || on_crack_.contains(c); });
-  });
+  return from != EdgeCrossingFrom::kSweep || distance <= kMinSnapFraction / kSnapReach * reach ||
+         !SnapWouldLayCrackOnSurface(v, reach);
 }
 
 double CrackCutter::Reach(const std::vector<TetId>& units) const {

@@ -31,7 +31,7 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
     return in == blade.end() ? nullptr : &in->second;
   };
   stood_.clear();
-  std::vector<VertexId> origins;
+  std::vector<VertexId> origins, for_good;
   for (const TetId u : units) {
     // A unit named at the last pose may have been renamed by parting since (its tets now are
     // units of their own, found through their points if they have any).
@@ -43,6 +43,7 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
     }
     const std::vector<VertexId> used = SplitUnit(u, blade_in(u));
     origins.insert(origins.end(), used.begin(), used.end());
+    if (!blade_in(u)) for_good.insert(for_good.end(), used.begin(), used.end());
   }
   Repart(origins);
   // Crack faces parting left shut open at a point of their own, so the crack opens up to the
@@ -67,6 +68,16 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
     origins.insert(origins.end(), used.begin(), used.end());
   }
   if (!origins.empty()) Repart(origins);
+  // A chip is walled in by crack faces, each of whose corners was to be parted.
+  std::vector<TetId> seeds;
+  std::sort(for_good.begin(), for_good.end());
+  for_good.erase(std::unique(for_good.begin(), for_good.end()), for_good.end());
+  for (const VertexId v : for_good) {
+    if (!OnTheCrack(v)) continue;
+    const std::vector<TetId> around = parting_.TetsAround(*mesh_, v);
+    seeds.insert(seeds.end(), around.begin(), around.end());
+  }
+  HoldChips(std::move(seeds));
   // So do the vertices of edge points the blade's points stand in for (they are made again if
   // the crack's front comes back).
   for (const auto& [u, in] : blade) {
@@ -130,7 +141,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   }
   const bool was_open = open_.contains(unit);
   if (split && split->kind == CrackSplitKind::kWhole && !was_open) {
-    std::vector<VertexId> to_part = HoldByAFaceOffTheCrack(corners, crack, &*split);
+    std::vector<VertexId> to_part;
     for (const auto& f : split->crack_faces) {
       AddCrack(MakeFaceKey(f[0], f[1], f[2]));
       to_part.insert(to_part.end(), f.begin(), f.end());
@@ -145,11 +156,8 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   }
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
   // between its points and the crack stay open until it moves on.
-  std::vector<VertexId> held;
-  if (blade == nullptr) {
-    ReleaseWalledInPieces(crack, &*split);
-    held = HoldByAFaceOffTheCrack(corners, crack, &*split);
-  }
+  // (Chips walled in by the faces of tets beside hold once parted: HoldChips.)
+  if (blade == nullptr) ReleaseWalledInPieces(crack, &*split);
   // While the blade is in the unit, crack faces parting leaves shut are opened at their middle
   // (SplitUnits) and stay so as the blade moves. A split for good opens none: the crack's edge has
   // moved on, and the faces it leaves shut open by parting, or at the end (OpenShutCrackFaces).
@@ -182,7 +190,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   }
   // Parting can change only at vertices of the crack faces going or coming, and at those with
   // copies (the pieces name origins; the tets around them may use copies).
-  std::vector<VertexId> to_part = std::move(held);
+  std::vector<VertexId> to_part;
   if (was_open) {
     for (const FaceKey& key : open_.at(unit).crack) {
       RemoveCrack(key);
@@ -378,43 +386,6 @@ void CrackCutter::CountPieces(TetId source, std::size_t removed, std::size_t add
   statistics_.cut_tets = statistics_.cut_tets + split(pieces) - split(before);
   statistics_.new_tets =
       statistics_.new_tets + (split(pieces) ? pieces : 0) - (split(before) ? before : 0);
-}
-
-std::vector<VertexId> CrackCutter::HoldByAFaceOffTheCrack(const mesh::TetVertices& corners,
-                                                          const TetCrack& crack,
-                                                          CrackSplit* split) {
-  // Not by the tissue's surface; rather beside a tet with a corner off the crack than beside one
-  // that may be walled in too (the two would be cut free together).
-  const auto preference = [&](int k) {
-    const auto& f = mesh::kTetFaces[k];
-    const FaceKey face = MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]]);
-    if (surface_.HasFace(face)) return 0;
-    const std::vector<TetId> beside = UnitsAround({face[0], face[1], face[2]});
-    return std::any_of(beside.begin(), beside.end(),
-                       [&](TetId u) {
-                         const mesh::TetVertices c = CornersOf(u);
-                         return c != corners && std::all_of(c.begin(), c.end(), [&](VertexId v) {
-                                  return on_crack_.contains(v);
-                                });
-                       })
-               ? 1
-               : 2;
-  };
-  const std::optional<HoldingTriangle> hold =
-      TriangleToHoldBy(crack, *split, preference,
-                       [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); });
-  if (!hold) return {};
-  const std::array<VertexId, 3>& t = hold->triangle;
-  const FaceKey key = MakeFaceKey(t[0], t[1], t[2]);
-  const auto& f = mesh::kTetFaces[hold->face];
-  kept_off_in_face_[MakeFaceKey(corners[f[0]], corners[f[1]], corners[f[2]])].push_back(t);
-  kept_off_.insert(key);
-  // The unit beside may have put it on the crack already.
-  if (const auto it = crack_.find(key); it != crack_.end()) EraseCrack(it);
-  std::erase_if(split->crack_faces, [&](const std::array<VertexId, 3>& c) {
-    return MakeFaceKey(c[0], c[1], c[2]) == key;
-  });
-  return {t.begin(), t.end()};
 }
 
 void CrackCutter::RemoveCrack(const FaceKey& key) {

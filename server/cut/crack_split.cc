@@ -483,31 +483,6 @@ bool OpenCrackFace(CrackSplit* split, const Triangle& face, VertexId point) {
   return true;
 }
 
-std::optional<HoldingTriangle> TriangleToHoldBy(
-    const TetCrack& crack, const CrackSplit& split, const std::function<int(int)>& preference,
-    const std::function<Eigen::Vector3d(VertexId)>& rest) {
-  std::vector<Triangle> cracked;
-  for (const Triangle& c : split.crack_faces) cracked.push_back(Sorted(c));
-  std::sort(cracked.begin(), cracked.end());
-  for (const FaceSplit& f : crack.faces) {
-    for (const Triangle& t : f.triangles) {
-      if (!std::binary_search(cracked.begin(), cracked.end(), Sorted(t))) return std::nullopt;
-    }
-  }
-  std::optional<HoldingTriangle> best;
-  std::pair<int, double> best_rank = {0, 0};  // (preference, area)
-  for (int k = 0; k < 4; ++k) {
-    const int preferred = preference(k);
-    if (preferred <= 0) continue;
-    for (const Triangle& t : crack.faces[k].triangles) {
-      const std::pair<int, double> rank = {
-          preferred, (rest(t[1]) - rest(t[0])).cross(rest(t[2]) - rest(t[0])).norm()};
-      if (rank > best_rank) best = HoldingTriangle{t, k}, best_rank = rank;
-    }
-  }
-  return best;
-}
-
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split) {
   const auto on_a_face = [&](const Triangle& f) {
     for (int k = 0; k < 4; ++k) {

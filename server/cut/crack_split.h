@@ -64,20 +64,6 @@ CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
 // points at once). Each such group joins one group beside it: the crack faces between them go.
 void ReleaseWalledInPieces(const TetCrack& crack, CrackSplit* split);
 
-// Where every triangle of the tet's faces lies on the crack (its corners all on the crack, the
-// face rule puts each on it), the tet would be cut free of every tet beside it though the blade
-// never cut around it: the triangle to keep off the crack (for the tet beside it too) so that the
-// tet holds there, and the face k it lies in. Of the faces k with the highest `preference(k)`
-// (0: none of it, such as the tissue's surface), the largest triangle (rest positions). nullopt
-// otherwise.
-struct HoldingTriangle {
-  std::array<mesh::VertexId, 3> triangle;
-  int face = 0;
-};
-std::optional<HoldingTriangle> TriangleToHoldBy(
-    const TetCrack& crack, const CrackSplit& split, const std::function<int(int)>& preference,
-    const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
-
 // How many of the split's tets have `face` (its vertices in any order) when it is a crack face:
 // 2 inside the tet, 1 on one of its faces (a triangle of the face rule on the crack), 0 if it
 // is no crack face of the split.

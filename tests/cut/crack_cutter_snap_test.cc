@@ -119,11 +119,34 @@ TEST(CrackCutter, AVertexFarFromTheBladeInItsTetsIsNotSnappedOntoTheCrack) {
   }
 }
 
+// Six times the rest volume of `t`, signed.
+double Volume(const TetMesh& m, const mesh::TetVertices& t) {
+  const Eigen::Vector3d a = m.rest_position(t[0]);
+  return (m.rest_position(t[1]) - a)
+      .cross(m.rest_position(t[2]) - a)
+      .dot(m.rest_position(t[3]) - a);
+}
+
+// Adds a tet over face `face` of tet 0, its apex `height` off the face's middle on the side away
+// from corner `away`.
+void AddTetBeside(TetMesh* m, const std::array<int, 3>& face, int away, double height) {
+  const auto at = [&](int i) { return m->rest_position(mesh::VertexId(i)); };
+  const Eigen::Vector3d normal =
+      (at(face[1]) - at(face[0])).cross(at(face[2]) - at(face[0])).normalized();
+  const double side = normal.dot(at(away) - at(face[0])) > 0 ? -1 : 1;
+  const mesh::VertexId apex =
+      m->AddVertex((at(face[0]) + at(face[1]) + at(face[2])) / 3 + side * height * normal);
+  mesh::TetVertices t = {mesh::VertexId(face[0]), mesh::VertexId(face[1]), mesh::VertexId(face[2]),
+                         apex};
+  if (Volume(*m, t) < 0) std::swap(t[0], t[1]);
+  ASSERT_TRUE(m->AddTet(t).ok());
+}
+
 // A flat tet, two corners 0.005 below the plane z = 0 and two 0.005 above, swept by a blade in
 // that plane: every corner lies on the blade's path to the least snapping (so the tissue's surface
-// keeps none off the crack), and all four snap, which puts every face of it on the crack. Held
-// below by a tet beside face 0-1-3, it holds by that face (kept off the crack): no chip is cut
-// free. Alone, it has no face to hold by, and the whole mesh is it.
+// keeps none off the crack), and all four snap, which puts every face of it on the crack: a chip.
+// Held below by a tet beside face 0-1-3, it holds by that face (kept off the crack): no chip is
+// cut free. Alone, it has no face to hold by, and the whole mesh is it.
 TEST(CrackCutter, ATetWithEveryCornerOnTheCrackHoldsByAFaceOffIt) {
   for (const bool held : {true, false}) {
     SCOPED_TRACE(held ? "held below" : "alone");
@@ -135,15 +158,7 @@ TEST(CrackCutter, ATetWithEveryCornerOnTheCrackHoldsByAFaceOffIt) {
     ASSERT_TRUE(
         m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)})
             .ok());
-    if (held) {
-      // Beside face 0-1-3, on the side away from corner 2, an edge's length off.
-      const Eigen::Vector3d normal = (flat[1] - flat[0]).cross(flat[3] - flat[0]).normalized();
-      const double side = normal.dot(flat[2] - flat[0]) > 0 ? -1 : 1;
-      m.AddVertex((flat[0] + flat[1] + flat[3]) / 3 + side * normal);
-      ASSERT_TRUE(
-          m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(3), mesh::VertexId(4)})
-              .ok());
-    }
+    if (held) AddTetBeside(&m, {0, 1, 3}, 2, 1);
     CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m),
                                               {.max_length = 10, .max_step = 10, .max_speed = 100});
     ASSERT_TRUE(cutter.ApplyPose({0, {-1, -1, 0}, {-1, 2, 0}}).ok());
@@ -153,6 +168,36 @@ TEST(CrackCutter, ATetWithEveryCornerOnTheCrackHoldsByAFaceOffIt) {
     EXPECT_EQ(cutter.statistics().snapped_vertices, 4u);
     EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
   }
+}
+
+// Two flat tets side by side (sharing face 1-2-3), every corner within 0.005 of the plane z = 0
+// a blade sweeps: all five snap, and each tet is a chip of its own, the one beside the other.
+// The first holds by the tet below it (a corner off the crack), the second by the first: one
+// piece, nothing cut free.
+TEST(CrackCutter, ChipsSideBySideHoldByEachOther) {
+  TetMesh m;
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0, 0, -0.005), Eigen::Vector3d(1, 0, 0.005), Eigen::Vector3d(0, 1, 0.005),
+        Eigen::Vector3d(1, 1, -0.005), Eigen::Vector3d(1.6, 1.6, 0.005)}) {
+    m.AddVertex(p);
+  }
+  for (const mesh::TetVertices& t : {mesh::TetVertices{mesh::VertexId(0), mesh::VertexId(1),
+                                                       mesh::VertexId(2), mesh::VertexId(3)},
+                                     mesh::TetVertices{mesh::VertexId(1), mesh::VertexId(2),
+                                                       mesh::VertexId(3), mesh::VertexId(4)}}) {
+    mesh::TetVertices oriented = t;
+    if (Volume(m, oriented) < 0) std::swap(oriented[0], oriented[1]);
+    ASSERT_TRUE(m.AddTet(oriented).ok());
+  }
+  AddTetBeside(&m, {0, 1, 3}, 2, 1);
+  CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m),
+                                            {.max_length = 10, .max_step = 10, .max_speed = 100});
+  ASSERT_TRUE(cutter.ApplyPose({0, {-1, -1, 0}, {-1, 3, 0}}).ok());
+  ASSERT_TRUE(cutter.ApplyPose({0.1, {3, -1, 0}, {3, 3, 0}}).ok());
+  cutter.Finish();
+  ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_EQ(cutter.statistics().snapped_vertices, 5u);
+  EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
 }
 
 // A blade grazing the tissue: its tip 0.05 of an edge under the top of a lattice, sweeping

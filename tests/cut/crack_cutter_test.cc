@@ -483,9 +483,8 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
       lagging += r.lagging;
     }
     EXPECT_GE(mean, 0.99) << lab::PathFamilyName(family);
-    // Pieces of one tissue tet cut free of the rest, though the blade went on: the hand paths'
-    // seed 4 leaves one (two before a tet's fourth corner was kept off the crack).
-    EXPECT_LE(chips, 1u) << lab::PathFamilyName(family);
+    // No piece of one tissue tet cut free of the rest, though the blade went on.
+    EXPECT_EQ(chips, 0u) << lab::PathFamilyName(family);
     // Progressive: the crack reaches the blade after all but 1% of the steps (in faces' planes
     // 5%: docs/cutting-fidelity.md).
     if (GetParam() == CutMode::kProgressive) {
@@ -496,6 +495,23 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
     EXPECT_LE(200 * slivers, new_tets) << lab::PathFamilyName(family);
     std::printf("lattice, %s: coverage lowest %.3f, mean %.3f, steps lagging %zu of %zu\n",
                 std::string(lab::PathFamilyName(family)).c_str(), lowest, mean, lagging, steps);
+  }
+}
+
+// The lattice's hand paths whose crossings came beside pieces' corners (seeds 23, 24 and 28 of
+// the forty measured in docs/cutting-fidelity.md): kept off the crack, the corners left pieces
+// under 1 degree (seed 24: 49 of them); snapped, the pieces they wall in together are chips, each
+// held by a face, so none is cut free.
+TEST_P(BothModes, HandPathsBesidePiecesCornersLeaveNeitherSliversNorChips) {
+  const TetMesh lattice = *mesh::MakeBoxLattice(
+      {.cells_x = 4, .cells_y = 6, .cells_z = 4, .size = Eigen::Vector3d(0.04, 0.06, 0.04)});
+  for (const std::uint64_t seed : {23, 24, 28}) {
+    SCOPED_TRACE(::testing::Message() << "hand seed " << seed);
+    const PathResult r = CutChecked(lattice, GetParam(), lab::PathFamily::kHand, seed);
+    if (HasFatalFailure()) return;
+    EXPECT_GE(r.min_new_dihedral, 1.0);
+    EXPECT_EQ(r.chips, 0u);
+    EXPECT_GE(r.fidelity.coverage_below_surface, 0.97);
   }
 }
 

@@ -384,56 +384,6 @@ TEST(CrackSplit, ACornerOnTheCrackCutOffIsNotWalledIn) {
   ExpectNoPieceWalledIn(crack, *split);
 }
 
-std::function<int(int)> Preferring(std::array<int, 4> preference) {
-  return [preference](int k) { return preference[k]; };
-}
-
-// Every corner on the crack, nothing else: the face rule puts each face on the crack, and the
-// cone spanning the crack (its inner faces let out) would leave the tet cut free of all beside
-// it. It holds by its largest face of the highest preference.
-TEST(CrackSplit, ATetWhoseFacesAllLieOnTheCrackHoldsByItsLargestPreferredFace) {
-  OneTet tet;
-  for (int i = 0; i < 4; ++i) tet.CornerOnCrack(i);
-  const TetCrack crack = tet.Crack();
-  EXPECT_FALSE(SplitWithoutApex(crack, tet.RestOf()));
-  CrackSplit split = SplitAsCone(crack, tet.Apex({0.25, 0.25, 0.25, 0.25}));
-  ReleaseWalledInPieces(crack, &split);
-  const auto area = [&](const Triangle& t) {
-    return (tet.Rest(t[1]) - tet.Rest(t[0])).cross(tet.Rest(t[2]) - tet.Rest(t[0])).norm();
-  };
-  std::array<double, 4> areas;
-  for (int k = 0; k < 4; ++k) areas[k] = area(crack.faces[k].triangles.front());
-  const int largest =
-      static_cast<int>(std::max_element(areas.begin(), areas.end()) - areas.begin());
-  const std::optional<HoldingTriangle> hold =
-      TriangleToHoldBy(crack, split, Preferring({2, 2, 2, 2}), tet.RestOf());
-  ASSERT_TRUE(hold);
-  EXPECT_EQ(Sorted(hold->triangle), Sorted(crack.faces[largest].triangles.front()));
-  EXPECT_EQ(hold->face, largest);
-  // The largest less preferred (beside a tet that may be walled in too), or not at all (the
-  // tissue's surface): another.
-  for (const int lower : {0, 1}) {
-    std::array<int, 4> preference = {2, 2, 2, 2};
-    preference[largest] = lower;
-    const std::optional<HoldingTriangle> other =
-        TriangleToHoldBy(crack, split, Preferring(preference), tet.RestOf());
-    ASSERT_TRUE(other);
-    EXPECT_NE(Sorted(other->triangle), Sorted(hold->triangle));
-  }
-  EXPECT_FALSE(TriangleToHoldBy(crack, split, Preferring({0, 0, 0, 0}), tet.RestOf()));
-}
-
-// Three corners on the crack: the face between them lies on it, the tet holds by the others.
-TEST(CrackSplit, ATetWithAFaceOffTheCrackHoldsAsItIs) {
-  OneTet tet;
-  for (int i = 1; i < 4; ++i) tet.CornerOnCrack(i);
-  const TetCrack crack = tet.Crack();
-  const std::optional<CrackSplit> split = SplitWithoutApex(crack, tet.RestOf());
-  ASSERT_TRUE(split);
-  EXPECT_EQ(split->crack_faces.size(), 1u);
-  EXPECT_FALSE(TriangleToHoldBy(crack, *split, Preferring({2, 2, 2, 2}), tet.RestOf()));
-}
-
 // The smallest dihedral angle of the cone from the apex at `weights` over the faces' triangles.
 double SmallestConeAngle(OneTet& tet, const TetCrack& crack, const Eigen::Vector4d& weights) {
   const CrackSplit split = SplitAsCone(crack, tet.Apex(weights));
