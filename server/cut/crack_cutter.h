@@ -44,6 +44,7 @@
 #pragma once
 
 #include <algorithm>
+#include <deque>
 #include <map>
 #include <optional>
 #include <span>
@@ -96,6 +97,12 @@ inline constexpr double kSliverAngleDeg = 5;
 // tet's: lab/crack_fidelity.h), so no crack face bends farther than that from the blade's path
 // to reach it.
 inline constexpr double kSnapReach = 0.24;
+// The crack runs along an edge between two vertices snapped onto it where the edge's middle lies
+// within this share of the tissue's edge there of the surface the blade swept between the two
+// snaps (beyond the fidelity meter's tolerance for a crack face's middle, 0.25, so a curved
+// sweep keeps its edges), looked for over at most kJoinSteps steps back (farther back, it does).
+inline constexpr double kJoinReach = 0.3;
+inline constexpr std::size_t kJoinSteps = 8192;
 // The blade sweeps along the tissue's surface at a vertex where the normal of the surface it swept
 // and the surface's there are within about 26 degrees (the cosine of the angle between them
 // is over this): a vertex there snapped onto the crack would lay the crack on the surface.
@@ -293,7 +300,14 @@ class CrackCutter {
   // step's swept surface (the blade through a vertex, along an edge or in a face's plane crosses
   // no edge inside).
   void SnapVerticesNear(const std::vector<mesh::TetId>& units, std::vector<mesh::TetId>* touched);
+  // Puts `v` on the crack, and decides, for each edge from it to a vertex on the crack already,
+  // whether the crack runs along that edge: where the edge's middle lies within kJoinReach of the
+  // tissue's edge there of the surface the blade swept between the poses its two ends came onto
+  // the crack (the last kJoinSteps steps at the most). Two vertices the blade passed at two
+  // places, such as the corner it comes out by and one it runs along a side to, do not join.
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
+  // Whether the crack runs along the edge (origins) where both its ends are on it (Snap).
+  bool EdgeOnCrack(mesh::VertexId a, mesh::VertexId b) const;
   // The point of the step's swept surface (its two triangles) nearest `x`, current positions;
   // only within a step.
   Eigen::Vector3d NearestOnStep(const Eigen::Vector3d& x) const;
@@ -499,7 +513,14 @@ class CrackCutter {
   absl::flat_hash_map<EdgeKey, EdgePoint> edge_points_;               // by origins
   absl::flat_hash_map<FaceKey, FacePoint, FaceKeyHash> face_points_;  // by origins
   absl::flat_hash_set<mesh::VertexId> on_crack_;                      // origins
-  CrackFaces crack_;                                                  // by origins
+  // The pose each vertex snapped at (the crack's other vertices are on it from the start), the
+  // edges between snapped vertices the crack runs along, and the poses of the last kJoinSteps
+  // steps (the first of them is pose swept_first_).
+  absl::flat_hash_map<mesh::VertexId, std::size_t> snapped_at_;
+  absl::flat_hash_set<EdgeKey> joined_;
+  std::deque<BladePose> swept_;
+  std::size_t swept_first_ = 1;
+  CrackFaces crack_;  // by origins
   // Triangles kept off the crack though the face rule puts them on it (HoldChips), and by the
   // faces of the units they lie in (origins).
   absl::flat_hash_set<FaceKey, FaceKeyHash> kept_off_;

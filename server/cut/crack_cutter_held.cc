@@ -40,6 +40,7 @@ CrackCutter::HeldIds CrackCutter::Held() const {
   }
   v.insert(on_crack_.begin(), on_crack_.end());
   for (const auto& [key, count] : crack_) AddFace(key, &v);
+  for (const FaceKey& key : kept_off_) AddFace(key, &v);
   for (const auto& [key, value] : blade_edges_) AddEdge(key, &v);
   for (const EdgeKey key : advancing_) AddEdge(key, &v);
   for (const auto& [key, vertex] : temporary_) v.insert(vertex);

@@ -41,6 +41,9 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
       }
       p.corner_on_crack[j] = on_crack_.contains(p.corners[j]);
     }
+    for (int j = 0; j < 3; ++j) {
+      p.edge_on_crack[j] = EdgeOnCrack(p.corners[j], p.corners[(j + 1) % 3]);
+    }
     const FaceKey key = MakeFaceKey(p.corners[0], p.corners[1], p.corners[2]);
     if (const auto off = kept_off_in_face_.find(key); off != kept_off_in_face_.end()) {
       p.kept_off = off->second;

@@ -237,8 +237,44 @@ double CrackCutter::SnapShare(std::span<const VertexId> corners) const {
 void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {
   if (!on_crack_.insert(v).second) return;
   ++statistics_.snapped_vertices;
+  snapped_at_[v] = poses_;
   const std::vector<TetId> units = UnitsAround({v});
   touched->insert(touched->end(), units.begin(), units.end());
+  absl::flat_hash_set<VertexId> beside;
+  for (const TetId u : units) {
+    for (const VertexId w : CornersOf(u)) {
+      if (w != v && on_crack_.contains(w)) beside.insert(w);
+    }
+  }
+  for (const VertexId w : beside) {
+    const auto at = snapped_at_.find(w);
+    if (at == snapped_at_.end()) continue;  // on the crack from the start: EdgeOnCrack
+    // The poses from the one before the earlier snap's step to this one.
+    const std::size_t first = std::min(at->second, poses_) - 1, last = poses_;
+    bool near = first < swept_first_;  // too long ago to tell: as it was
+    if (!near) {
+      const Eigen::Vector3d middle =
+          0.5 * (mesh_->current_position(v) + mesh_->current_position(w));
+      const double reach = kJoinReach / kSnapReach * Reach(UnitsAround({v, w}));
+      for (std::size_t i = std::max(first, swept_first_); i < last && !near; ++i) {
+        const BladePose& a = swept_[i - swept_first_];
+        const BladePose& b = swept_[i + 1 - swept_first_];
+        const Eigen::Vector3d low = a.tip.cwiseMin(a.heel).cwiseMin(b.tip).cwiseMin(b.heel);
+        const Eigen::Vector3d high = a.tip.cwiseMax(a.heel).cwiseMax(b.tip).cwiseMax(b.heel);
+        if (((low - middle).array() > reach).any() || ((middle - high).array() > reach).any()) {
+          continue;  // the step's box is out of reach
+        }
+        near = geometry::DistanceToTriangle(middle, a.tip, a.heel, b.heel) <= reach ||
+               geometry::DistanceToTriangle(middle, a.tip, b.heel, b.tip) <= reach;
+      }
+    }
+    if (near) joined_.insert(MakeEdgeKey(v, w));
+  }
+}
+
+bool CrackCutter::EdgeOnCrack(VertexId a, VertexId b) const {
+  return !snapped_at_.contains(a) || !snapped_at_.contains(b) ||
+         joined_.contains(MakeEdgeKey(a, b));
 }
 
 }  // namespace kerf::cut

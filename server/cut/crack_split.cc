@@ -117,6 +117,20 @@ std::vector<Triangle> InnerFacesOf(const TetCrack& crack, const std::vector<TetV
 // each edge inside face c's split joining two of the face's points on the crack.
 std::vector<Triangle> FanCrackFaces(const TetCrack& crack, int c) {
   const std::vector<VertexId> on_crack = PointsOnCrack(crack.points[c]);
+  // The crack runs along the edge from the corner to `v`, another corner, if the faces at that
+  // edge say so (edge_on_crack); to a point the cut made, always.
+  const auto edge_on_crack = [&](VertexId v) {
+    for (const FacePoints& p : crack.points) {
+      for (int j = 0; j < 3; ++j) {
+        const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
+        if (((a == crack.corners[c] && b == v) || (b == crack.corners[c] && a == v)) &&
+            !p.edge_on_crack[j]) {
+          return false;
+        }
+      }
+    }
+    return true;
+  };
   std::map<std::array<VertexId, 2>, int> edges;  // of face c's triangles, with how many hold each
   for (const Triangle& t : crack.faces[c].triangles) {
     for (int j = 0; j < 3; ++j) {
@@ -126,7 +140,8 @@ std::vector<Triangle> FanCrackFaces(const TetCrack& crack, int c) {
   }
   std::vector<Triangle> faces;
   for (const auto& [e, count] : edges) {
-    if (count == 2 && Contains(on_crack, e[0]) && Contains(on_crack, e[1])) {
+    if (count == 2 && Contains(on_crack, e[0]) && Contains(on_crack, e[1]) && edge_on_crack(e[0]) &&
+        edge_on_crack(e[1])) {
       faces.push_back({crack.corners[c], e[0], e[1]});
     }
   }

@@ -81,7 +81,7 @@ FaceSplit SplitFaceTriangles(const FacePoints& p) {
   }
   split.triangles.push_back(p.corners);
   for (int k = 0; k < 3; ++k) {
-    if (p.corner_on_crack[k] && p.corner_on_crack[(k + 1) % 3]) {
+    if (p.corner_on_crack[k] && p.corner_on_crack[(k + 1) % 3] && p.edge_on_crack[k]) {
       split.trace.push_back(Segment(p.corners[k], p.corners[(k + 1) % 3]));
     }
   }
@@ -110,12 +110,22 @@ FaceSplit SplitFace(const FacePoints& p) {
       return MakeFaceKey(k[0], k[1], k[2]) == MakeFaceKey(t[0], t[1], t[2]);
     });
   };
+  // An edge of the face off the crack though its corners are on it.
+  const auto spans_edge_off = [&](const std::array<VertexId, 3>& t) {
+    for (int k = 0; k < 3; ++k) {
+      if (!p.edge_on_crack[k] && std::find(t.begin(), t.end(), p.corners[k]) != t.end() &&
+          std::find(t.begin(), t.end(), p.corners[(k + 1) % 3]) != t.end()) {
+        return true;
+      }
+    }
+    return false;
+  };
   for (const std::array<VertexId, 3>& t : split.triangles) {
     if (std::all_of(t.begin(), t.end(),
                     [&](VertexId v) {
                       return std::find(on_crack.begin(), on_crack.end(), v) != on_crack.end();
                     }) &&
-        !kept_off(t)) {
+        !kept_off(t) && !spans_edge_off(t)) {
       split.on_crack.push_back(t);
     }
   }

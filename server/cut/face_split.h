@@ -39,6 +39,10 @@ struct FacePoints {
   // Triangles of the face's split that stay off the crack though their corners are on it (they
   // would wall a tet in: see CrackCutter), each with its vertices in any order.
   std::vector<std::array<mesh::VertexId, 3>> kept_off;
+  // Whether edge k, from corners[k] to corners[(k + 1) % 3], lies on the crack where both its
+  // corners do: false where they came onto the crack from parts of the blade's path farther apart
+  // than the edge (the crack reaches each, not the edge between them).
+  std::array<bool, 3> edge_on_crack = {true, true, true};
 
   friend bool operator==(const FacePoints&, const FacePoints&) = default;
 };

@@ -200,6 +200,41 @@ TEST(CrackCutter, ChipsSideBySideHoldByEachOther) {
   EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
 }
 
+// A blade runs with its tip along a line of vertices inside a lattice (y = 2, z = 1) out to its
+// side x = 0, slides along that side (cutting nothing) to the vertices at y = 1, and leaves. The
+// vertices at both ends of the slide are on the crack, from parts of the path a cell apart; the
+// edges and faces between them (the diagonals of the corner column) are not: no crack face lies
+// farther from the swept surface than the meter's tolerance.
+TEST(CrackCutter, VerticesTheBladeReachedApartDoNotJoinOnTheCrack) {
+  for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+    SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
+    TetMesh m = *mesh::MakeBoxLattice({.cells_x = 2, .cells_y = 3, .cells_z = 2});
+    const TetMesh tissue = m;
+    CrackCutter cutter = *CrackCutter::Create(
+        &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 1000}, {.mode = mode});
+    lab::FidelityMeter meter(tissue);
+    std::vector<Eigen::Vector2d> path;
+    for (int k = 0; k <= 50; ++k) path.emplace_back(2.5 - 0.05 * k, 2);
+    for (int k = 1; k <= 20; ++k) path.emplace_back(0, 2 - 0.05 * k);
+    for (int k = 1; k <= 6; ++k) path.emplace_back(-0.05 * k, 1 - 0.02 * k);
+    std::optional<BladePose> last;
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      const BladePose pose{0.01 * static_cast<double>(k),
+                           {path[k].x(), path[k].y(), 1},
+                           {path[k].x(), path[k].y(), 2.8}};
+      ASSERT_TRUE(cutter.ApplyPose(pose).ok());
+      if (last) meter.AddStep(*last, pose);
+      last = pose;
+    }
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+    EXPECT_GT(f.crack_faces, 0u);
+    EXPECT_GE(f.coverage, 0.99);
+    EXPECT_EQ(f.overcut_faces, 0u);
+  }
+}
+
 // A blade grazing the tissue: its tip 0.05 of an edge under the top of a lattice, sweeping
 // across it; or lying flat 0.1 under the top, shaving it. The vertices of the top lie within the
 // snap band of the blade's path; snapped onto the crack, they would lay it on the surface and

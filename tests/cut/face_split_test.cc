@@ -114,6 +114,24 @@ TEST(FaceSplit, AFaceWithItsCornersOnTheCrackLiesOnIt) {
   EXPECT_EQ(three.on_crack.size(), 1u);
 }
 
+// An edge off the crack though its corners are on it (they came onto the crack from parts of the
+// blade's path farther apart than the edge): no trace along it, and no triangle with it lies on
+// the crack; a triangle through an inside point beside it still may.
+TEST(FaceSplit, AnEdgeOffTheCrackIsNoTraceAndHoldsNoTriangleOnIt) {
+  FacePoints whole = Points({false, false, false}, false, {true, true, true});
+  whole.edge_on_crack = {true, false, true};  // B-C off
+  const FaceSplit split = SplitFace(whole);
+  EXPECT_EQ(split.trace, (std::vector<std::array<VertexId, 2>>{{kA, kB}, {kA, kC}}));
+  EXPECT_TRUE(split.on_crack.empty());
+  FacePoints fan = Points({false, false, false}, true, {true, true, true});
+  fan.edge_on_crack = {true, false, true};
+  const FaceSplit fanned = SplitFace(fan);
+  EXPECT_EQ(fanned.on_crack.size(), 2u);
+  for (const auto& t : fanned.on_crack) {
+    EXPECT_FALSE(std::count(t.begin(), t.end(), kB) && std::count(t.begin(), t.end(), kC));
+  }
+}
+
 // A triangle kept off the crack stays off it, in whatever order its vertices are named; the
 // others at the face still lie on it, and the trace is the same.
 TEST(FaceSplit, ATriangleKeptOffTheCrackIsNotOnIt) {
