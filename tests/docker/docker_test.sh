@@ -62,8 +62,11 @@ address=$(sed -n 's/^kerf-server listening on //p' "$log")
 health=$(find "$bin" -type f -name kerf-health -print -quit)
 # Under the sanitizers: gRPC's exit race with OpenSSL's per-thread state is not kerf's leak.
 export LSAN_OPTIONS="suppressions=$src/tests/support/lsan_grpc_openssl_exit.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
-"$health" --server="$address" --tls_ca="$certs/ca.pem" | grep -q SERVING ||
-  fail "kerf-health over TLS did not answer SERVING"
+# Its answer read whole, then matched: `| grep -q` under pipefail fails now and then, when grep
+# has matched and gone before kerf-health's last write (SIGPIPE).
+answer=$("$health" --server="$address" --tls_ca="$certs/ca.pem") ||
+  fail "kerf-health over TLS failed: $answer"
+grep -q SERVING <<<"$answer" || fail "kerf-health over TLS did not answer SERVING: $answer"
 ! "$health" --server="$address" --timeout_seconds=2 >/dev/null 2>&1 ||
   fail "kerf-health without the CA was answered"
 
