@@ -236,8 +236,10 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
 void CrackCutter::Finish() {
   std::vector<TetId> touched;
   if (previous_) {
-    // The crack reaches where the blade was: its crossings of faces are where the crack ends.
+    // The crack reaches where the blade was: its crossings of faces are where the crack ends,
+    // and a tet it is in splits for good from its point there (withdrawn_at_).
     const BladePose& at = *previous_;
+    for (const auto& [u, in] : BladeUnitsAt(at)) withdrawn_at_[u] = in.apex;
     step_ = {at, at};  // what snaps now snaps within reach of the blade where it was
     Crossings crossed;
     crossed.faces = crossings_.FacesCrossedBy(
@@ -255,6 +257,7 @@ void CrackCutter::Finish() {
   }
   step_.reset();
   SplitReadyGroups(nullptr);  // progressive: every group closes
+  withdrawn_at_.clear();
   OpenShutCrackFaces();
   previous_.reset();
 }

@@ -518,6 +518,10 @@ class CrackCutter {
   // steps (the first of them is pose swept_first_).
   absl::flat_hash_map<mesh::VertexId, std::size_t> snapped_at_;
   absl::flat_hash_set<EdgeKey> joined_;
+  // While the blade is withdrawn, its point (BladeIn::apex) in each unit it is in: a cone split
+  // for good there takes it for its apex, as while the blade was in the unit, so the crack ends
+  // where the blade did (unless that cone has a piece under kSliverAngleDeg).
+  absl::flat_hash_map<mesh::TetId, Eigen::Vector4d> withdrawn_at_;
   std::deque<BladePose> swept_;
   std::size_t swept_first_ = 1;
   CrackFaces crack_;  // by origins

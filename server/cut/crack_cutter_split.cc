@@ -149,10 +149,19 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     return to_part;
   }
   if (!split) {
-    split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners,
-                                               blade != nullptr ? blade->apex
-                                               : cone_apex      ? *cone_apex
-                                                                : ConeApexWeights(crack, rest)));
+    Eigen::Vector4d apex;
+    if (blade != nullptr) {
+      apex = blade->apex;
+    } else if (cone_apex) {
+      apex = *cone_apex;
+    } else if (const auto at = withdrawn_at_.find(unit);
+               at != withdrawn_at_.end() && at->second.minCoeff() > 0 &&
+               SmallestConeAngle(crack, rest, at->second) >= kSliverAngleDeg) {
+      apex = at->second;  // where the blade was withdrawn: the crack ends there
+    } else {
+      apex = ConeApexWeights(crack, rest);
+    }
+    split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners, apex));
   }
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
   // between its points and the crack stay open until it moves on.

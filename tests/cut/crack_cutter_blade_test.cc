@@ -94,6 +94,36 @@ TEST(CrackCutterBlade, ABladeSlidingAlongTheSurfaceCutsNothing) {
   }
 }
 
+// A blade entering the unit tet through its face x = 0 and withdrawn with its tip inside: the
+// cone the tet splits into for good has its apex on the blade where it was withdrawn (as while it
+// was in the tet), so the crack ends where the blade did rather than where the cone's angles
+// are best.
+TEST(CrackCutterBlade, TheCrackEndsWhereTheBladeIsWithdrawn) {
+  for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+    SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
+    TetMesh m = kerf::testing::UnitTet();
+    const std::size_t corners = m.vertex_count();
+    CrackCutter cutter = *CrackCutter::Create(&m, 1, kLoose, {.mode = mode});
+    BladePose last;
+    for (int k = 0; k <= 10; ++k) {
+      const double x = -0.2 + 0.05 * k;
+      last = {0.01 * k, {x, 0.25, 0.15}, {x, 0.25, 2}};
+      ASSERT_TRUE(cutter.ApplyPose(last).ok());
+    }
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    std::size_t inner = 0;
+    for (const mesh::VertexId v : m.vertices()) {
+      const Eigen::Vector3d& p = m.rest_position(v);
+      if (mesh::Index(v) < corners || p.minCoeff() < 1e-9 || p.sum() > 1 - 1e-9) continue;
+      ++inner;  // a point the cut made strictly inside the tet: on the blade
+      EXPECT_NEAR(p.x(), last.tip.x(), 1e-12);
+      EXPECT_NEAR(p.y(), last.tip.y(), 1e-12);
+    }
+    EXPECT_GT(inner, 0u);
+  }
+}
+
 // The scripted paths reach every case of the paper's Table 1, each pose valid and conforming
 // (cut with the least snapping: the paths were found for crossings taken where they are).
 TEST(CrackCutterBlade, EveryTableCaseIsReached) {
