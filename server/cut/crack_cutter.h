@@ -308,6 +308,9 @@ class CrackCutter {
   void Snap(mesh::VertexId v, std::vector<mesh::TetId>* touched);
   // Whether the crack runs along the edge (origins) where both its ends are on it (Snap).
   bool EdgeOnCrack(mesh::VertexId a, mesh::VertexId b) const;
+  // Whether `x` (current positions) lies within `reach` (m) of the surface the blade swept from
+  // pose `first` to pose `last`; true where `first` is older than the poses kept (swept_).
+  bool SweptNear(const Eigen::Vector3d& x, std::size_t first, std::size_t last, double reach) const;
   // The point of the step's swept surface (its two triangles) nearest `x`, current positions;
   // only within a step.
   Eigen::Vector3d NearestOnStep(const Eigen::Vector3d& x) const;
@@ -446,6 +449,10 @@ class CrackCutter {
   std::array<mesh::VertexId, 4> NamedIn(std::span<const mesh::TetId> tets,
                                         std::array<mesh::VertexId, 4> origins,
                                         std::array<bool, 4>* found) const;
+  // The apex (barycentric) of a cone the unit splits into for good: the blade's point where it
+  // is withdrawn (withdrawn_at_) if that cone has no piece under kSliverAngleDeg, else
+  // ConeApexWeights.
+  Eigen::Vector4d ApexForGood(mesh::TetId unit, const TetCrack& crack) const;
   // Puts `pieces` (oriented on rest positions) in place of the unit's tets.
   // Keeps cut_tets and new_tets: the tissue's tets standing in two pieces or more, and those.
   void CountPieces(mesh::TetId source, std::size_t removed, std::size_t added);

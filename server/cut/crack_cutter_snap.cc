@@ -249,27 +249,30 @@ void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {
   for (const VertexId w : beside) {
     const auto at = snapped_at_.find(w);
     if (at == snapped_at_.end()) continue;  // on the crack from the start: EdgeOnCrack
-    // The poses from the one before the earlier snap's step to this one.
-    const std::size_t first = std::min(at->second, poses_) - 1, last = poses_;
-    bool near = first < swept_first_;  // too long ago to tell: as it was
-    if (!near) {
-      const Eigen::Vector3d middle =
-          0.5 * (mesh_->current_position(v) + mesh_->current_position(w));
-      const double reach = kJoinReach / kSnapReach * Reach(UnitsAround({v, w}));
-      for (std::size_t i = std::max(first, swept_first_); i < last && !near; ++i) {
-        const BladePose& a = swept_[i - swept_first_];
-        const BladePose& b = swept_[i + 1 - swept_first_];
-        const Eigen::Vector3d low = a.tip.cwiseMin(a.heel).cwiseMin(b.tip).cwiseMin(b.heel);
-        const Eigen::Vector3d high = a.tip.cwiseMax(a.heel).cwiseMax(b.tip).cwiseMax(b.heel);
-        if (((low - middle).array() > reach).any() || ((middle - high).array() > reach).any()) {
-          continue;  // the step's box is out of reach
-        }
-        near = geometry::DistanceToTriangle(middle, a.tip, a.heel, b.heel) <= reach ||
-               geometry::DistanceToTriangle(middle, a.tip, b.heel, b.tip) <= reach;
-      }
+    // From the pose before the earlier snap's step to this one.
+    const Eigen::Vector3d middle = 0.5 * (mesh_->current_position(v) + mesh_->current_position(w));
+    if (SweptNear(middle, std::min(at->second, poses_) - 1, poses_,
+                  kJoinReach / kSnapReach * Reach(UnitsAround({v, w})))) {
+      joined_.insert(MakeEdgeKey(v, w));
     }
-    if (near) joined_.insert(MakeEdgeKey(v, w));
   }
+}
+
+bool CrackCutter::SweptNear(const Eigen::Vector3d& x, std::size_t first, std::size_t last,
+                            double reach) const {
+  if (first < swept_first_) return true;  // too long ago to tell
+  for (std::size_t i = first; i < last; ++i) {
+    const BladePose& a = swept_[i - swept_first_];
+    const BladePose& b = swept_[i + 1 - swept_first_];
+    const Eigen::Vector3d low = a.tip.cwiseMin(a.heel).cwiseMin(b.tip).cwiseMin(b.heel);
+    const Eigen::Vector3d high = a.tip.cwiseMax(a.heel).cwiseMax(b.tip).cwiseMax(b.heel);
+    if (((low - x).array() > reach).any() || ((x - high).array() > reach).any()) continue;
+    if (geometry::DistanceToTriangle(x, a.tip, a.heel, b.heel) <= reach ||
+        geometry::DistanceToTriangle(x, a.tip, b.heel, b.tip) <= reach) {
+      return true;
+    }
+  }
+  return false;
 }
 
 bool CrackCutter::EdgeOnCrack(VertexId a, VertexId b) const {

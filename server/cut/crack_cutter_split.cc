@@ -149,18 +149,9 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     return to_part;
   }
   if (!split) {
-    Eigen::Vector4d apex;
-    if (blade != nullptr) {
-      apex = blade->apex;
-    } else if (cone_apex) {
-      apex = *cone_apex;
-    } else if (const auto at = withdrawn_at_.find(unit);
-               at != withdrawn_at_.end() && at->second.minCoeff() > 0 &&
-               SmallestConeAngle(crack, rest, at->second) >= kSliverAngleDeg) {
-      apex = at->second;  // where the blade was withdrawn: the crack ends there
-    } else {
-      apex = ConeApexWeights(crack, rest);
-    }
+    const Eigen::Vector4d apex = blade != nullptr ? blade->apex
+                                 : cone_apex      ? *cone_apex
+                                                  : ApexForGood(unit, crack);
     split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners, apex));
   }
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
@@ -228,6 +219,16 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
       corners, source, std::move(pieces), std::move(crack_faces), std::move(openings), points,
       cone,    opened, smallest_volume};
   return to_part;
+}
+
+Eigen::Vector4d CrackCutter::ApexForGood(TetId unit, const TetCrack& crack) const {
+  const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
+  if (const auto at = withdrawn_at_.find(unit);
+      at != withdrawn_at_.end() && at->second.minCoeff() > 0 &&
+      SmallestConeAngle(crack, rest, at->second) >= kSliverAngleDeg) {
+    return at->second;  // where the blade is withdrawn: the crack ends there
+  }
+  return ConeApexWeights(crack, rest);
 }
 
 CrackSplit CrackCutter::PiecesAsSplit(TetId unit) const {
