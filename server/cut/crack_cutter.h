@@ -485,6 +485,7 @@ class CrackCutter {
   void CloseUnits(const std::vector<mesh::TetId>& units);
   // Whether `v` lies on the crack: snapped onto it, or a point the cut made.
   bool OnTheCrack(mesh::VertexId v) const;
+  bool AllCornersOnTheCrack(const mesh::TetVertices& corners) const;
   // The chip `seed` is in: the tets joined to it through faces not on the crack, if they are
   // at most a few, all their corners lie on the crack, none is a piece of a unit the blade is
   // in, and they are not the whole tissue. Marks the tets it looks at in `seen`.

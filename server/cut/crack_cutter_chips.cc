@@ -29,6 +29,10 @@ bool CrackCutter::OnTheCrack(VertexId v) const {
   return on_crack_.contains(origin) || recipe_.contains(origin);
 }
 
+bool CrackCutter::AllCornersOnTheCrack(const mesh::TetVertices& corners) const {
+  return std::all_of(corners.begin(), corners.end(), [&](VertexId v) { return OnTheCrack(v); });
+}
+
 std::optional<std::vector<TetId>> CrackCutter::ChipAt(TetId seed,
                                                       absl::flat_hash_set<TetId>* seen) const {
   std::vector<TetId> chip = {seed};
@@ -42,7 +46,7 @@ std::optional<std::vector<TetId>> CrackCutter::ChipAt(TetId seed,
       return std::nullopt;
     }
     const mesh::TetVertices& c = mesh_->tet(chip[next]);
-    if (!std::all_of(c.begin(), c.end(), [&](VertexId v) { return OnTheCrack(v); })) {
+    if (!AllCornersOnTheCrack(c)) {
       return std::nullopt;
     }
     for (const auto& f : mesh::kTetFaces) {
@@ -79,9 +83,7 @@ std::optional<FaceKey> CrackCutter::FaceToHoldChipBy(const std::vector<TetId>& c
                              [&](VertexId w) { return parting_.Origin(w) == v; });
         };
         if (chip_tets.contains(other) || !in(key[1]) || !in(key[2])) continue;
-        beside = std::max(
-            beside,
-            std::all_of(o.begin(), o.end(), [&](VertexId v) { return OnTheCrack(v); }) ? 1 : 2);
+        beside = std::max(beside, AllCornersOnTheCrack(o) ? 1 : 2);
       }
       if (beside == 0) continue;
       const Eigen::Vector3d a = mesh_->rest_position(key[0]);
@@ -128,7 +130,7 @@ void CrackCutter::HoldChips(std::vector<TetId> seeds) {
     std::erase_if(seeds, [&](TetId t) {
       if (!mesh_->IsAlive(t)) return true;
       const mesh::TetVertices& c = mesh_->tet(t);
-      return !std::all_of(c.begin(), c.end(), [&](VertexId v) { return OnTheCrack(v); });
+      return !AllCornersOnTheCrack(c);
     });
     std::sort(seeds.begin(), seeds.end());  // the same holds whatever the callers' order
     absl::flat_hash_set<TetId> seen;

@@ -142,6 +142,18 @@ void AddTetBeside(TetMesh* m, const std::array<int, 3>& face, int away, double h
   ASSERT_TRUE(m->AddTet(t).ok());
 }
 
+// Sweeps a blade lying in the plane z = 0 across `m` from x = -1 to x = `far` (its ends at y = -1
+// and y = `far`), withdraws it and checks the mesh; returns the vertices snapped onto the crack.
+std::size_t SweepThePlaneZ0(TetMesh* m, double far) {
+  CrackCutter cutter = *CrackCutter::Create(m, mesh::MeanEdgeLength(*m),
+                                            {.max_length = 10, .max_step = 10, .max_speed = 100});
+  EXPECT_TRUE(cutter.ApplyPose({0, {-1, -1, 0}, {-1, far, 0}}).ok());
+  EXPECT_TRUE(cutter.ApplyPose({0.1, {far, -1, 0}, {far, far, 0}}).ok());
+  cutter.Finish();
+  EXPECT_TRUE(mesh::FindMeshDefects(*m).empty()) << mesh::ValidateMesh(*m);
+  return cutter.statistics().snapped_vertices;
+}
+
 // A flat tet, two corners 0.005 below the plane z = 0 and two 0.005 above, swept by a blade in
 // that plane: every corner lies on the blade's path to the least snapping (so the tissue's surface
 // keeps none off the crack), and all four snap, which puts every face of it on the crack: a chip.
@@ -159,13 +171,7 @@ TEST(CrackCutter, ATetWithEveryCornerOnTheCrackHoldsByAFaceOffIt) {
         m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)})
             .ok());
     if (held) AddTetBeside(&m, {0, 1, 3}, 2, 1);
-    CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m),
-                                              {.max_length = 10, .max_step = 10, .max_speed = 100});
-    ASSERT_TRUE(cutter.ApplyPose({0, {-1, -1, 0}, {-1, 2, 0}}).ok());
-    ASSERT_TRUE(cutter.ApplyPose({0.1, {2, -1, 0}, {2, 2, 0}}).ok());
-    cutter.Finish();
-    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-    EXPECT_EQ(cutter.statistics().snapped_vertices, 4u);
+    EXPECT_EQ(SweepThePlaneZ0(&m, 2), 4u);
     EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
   }
 }
@@ -190,13 +196,7 @@ TEST(CrackCutter, ChipsSideBySideHoldByEachOther) {
     ASSERT_TRUE(m.AddTet(oriented).ok());
   }
   AddTetBeside(&m, {0, 1, 3}, 2, 1);
-  CrackCutter cutter = *CrackCutter::Create(&m, mesh::MeanEdgeLength(m),
-                                            {.max_length = 10, .max_step = 10, .max_speed = 100});
-  ASSERT_TRUE(cutter.ApplyPose({0, {-1, -1, 0}, {-1, 3, 0}}).ok());
-  ASSERT_TRUE(cutter.ApplyPose({0.1, {3, -1, 0}, {3, 3, 0}}).ok());
-  cutter.Finish();
-  ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-  EXPECT_EQ(cutter.statistics().snapped_vertices, 5u);
+  EXPECT_EQ(SweepThePlaneZ0(&m, 3), 5u);
   EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
 }
 
