@@ -109,10 +109,12 @@ std::array<VertexId, 4> CrackCutter::NamedIn(std::span<const TetId> tets,
                                              std::array<bool, 4>* found) const {
   for (const TetId t : tets) {
     for (const VertexId v : mesh_->tet(t)) {
+      const VertexId origin = parting_.Origin(v);
       for (int k = 0; k < 4; ++k) {
-        if (!(*found)[k] && origins[k] == parting_.Origin(v)) origins[k] = v, (*found)[k] = true;
+        if (!(*found)[k] && origins[k] == origin) origins[k] = v, (*found)[k] = true;
       }
     }
+    if ((*found)[0] && (*found)[1] && (*found)[2] && (*found)[3]) break;
   }
   return origins;
 }

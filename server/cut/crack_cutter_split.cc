@@ -311,14 +311,29 @@ int CrackCutter::OpenAtItsMiddle(TetId unit, const TetCrack& crack, const FaceKe
 std::vector<CrackCutter::ShutFace> CrackCutter::ShutCrackFaces(
     TetId unit, const absl::flat_hash_map<TetId, BladeIn>& blade) const {
   const OpenTet& open = open_.at(unit);
+  std::vector<mesh::TetVertices> origins_of_pieces;  // by the pieces' order
+  for (const TetId p : open.pieces) {
+    mesh::TetVertices origins = mesh_->tet(p);
+    for (VertexId& v : origins) v = parting_.Origin(v);
+    origins_of_pieces.push_back(origins);
+  }
   std::vector<ShutFace> shut;
   for (const FaceKey& key : open.crack) {
     std::vector<std::array<VertexId, 3>> sides;  // each piece's ids for the key's origins
-    for (const TetId p : open.pieces) {
-      std::array<bool, 4> found{};
-      const std::array<VertexId, 4> named =
-          NamedIn(std::span<const TetId>(&p, 1), {key[0], key[1], key[2], key[0]}, &found);
-      if (found[0] && found[1] && found[2]) sides.push_back({named[0], named[1], named[2]});
+    for (std::size_t i = 0; i < open.pieces.size(); ++i) {
+      const mesh::TetVertices& ids = mesh_->tet(open.pieces[i]);
+      std::array<VertexId, 3> side;
+      int found = 0;
+      for (int k = 0; k < 3; ++k) {
+        for (int j = 0; j < 4; ++j) {
+          if (origins_of_pieces[i][j] == key[k]) {
+            side[k] = ids[j];
+            ++found;
+            break;
+          }
+        }
+      }
+      if (found == 3) sides.push_back(side);
     }
     if (sides.size() == 2 && sides[0] == sides[1]) shut.push_back({key, std::nullopt});
     if (sides.size() != 1) continue;
