@@ -157,19 +157,30 @@ Crossings BladeCrossings::Find(
 std::vector<FaceCrossing> BladeCrossings::FacesCrossedBy(
     const BladePose& pose, const std::vector<mesh::TetVertices>& tets,
     const std::function<bool(const std::array<VertexId, 3>&)>& skip_face) const {
-  std::vector<FaceCrossing> crossed;
-  absl::flat_hash_set<std::array<VertexId, 3>> tested;
+  std::vector<std::array<VertexId, 3>> faces;  // of the tets whose boxes the blade meets
   for (const mesh::TetVertices& v : tets) {
+    Eigen::Vector3d low = mesh_->current_position(v[0]), high = low;
+    for (int i = 1; i < 4; ++i) {
+      low = low.cwiseMin(mesh_->current_position(v[i]));
+      high = high.cwiseMax(mesh_->current_position(v[i]));
+    }
+    if (!geometry::SegmentMeetsBox(pose.tip, pose.heel, low, high, 1e-6 * (high - low).norm())) {
+      continue;
+    }
     for (const auto& f : mesh::kTetFaces) {
       std::array<VertexId, 3> face = {v[f[0]], v[f[1]], v[f[2]]};
       std::sort(face.begin(), face.end());
-      if (!tested.insert(face).second || skip_face(face)) continue;
-      if (const auto c = geometry::IntersectSegmentTriangle(
-              pose.tip, pose.heel, mesh_->current_position(face[0]),
-              mesh_->current_position(face[1]), mesh_->current_position(face[2]))) {
-        crossed.push_back({face, c->barycentric});
-      }
+      faces.push_back(face);
     }
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  std::vector<FaceCrossing> crossed;
+  for (const std::array<VertexId, 3>& face : faces) {
+    const auto c = geometry::IntersectSegmentTriangle(
+        pose.tip, pose.heel, mesh_->current_position(face[0]), mesh_->current_position(face[1]),
+        mesh_->current_position(face[2]));
+    if (c && !skip_face(face)) crossed.push_back({face, c->barycentric});
   }
   return crossed;
 }

@@ -209,6 +209,7 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
     } else {
       const absl::flat_hash_map<TetId, BladeIn> blade = BladeUnitsAt(pose);
       KeepEdgePointsLeft(blade, &touched);
+      KeepFarthestFaceCrossings(&pose, near, &touched);
       // Split: the units with new points, those the blade is in, and those it was in.
       touched.insert(touched.end(), blade_units_.begin(), blade_units_.end());
       blade_units_.clear();
@@ -253,6 +254,7 @@ void CrackCutter::Finish() {
   Join(touched);
   if (mode_ == CutMode::kProgressive) {
     KeepEdgePointsLeft({}, &touched);
+    KeepFarthestFaceCrossings(nullptr, {}, &touched);
     touched.insert(touched.end(), blade_units_.begin(), blade_units_.end());
     blade_units_.clear();
     SplitUnits(std::move(touched), {});

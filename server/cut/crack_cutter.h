@@ -36,11 +36,12 @@
 // points moving with the blade (its pieces stand while only those move and none turns over);
 // a crack face there none of whose corners parting separates (all on the crack's edge: the
 // blade, the tip's path) opens at a point in its middle. An edge point the blade leaves becomes
-// a point for good where it was last. A group closes once the blade meets none of its tets:
-// their pieces are then tets of their own. Deferred: a group splits once the blade meets none
-// of its tets. Either way, withdrawing the blade makes its crossings of faces
-// points where the crack ends, and after every split the vertices of the crack are parted where it
-// separates their tets.
+// a point for good where it was last, and so does the farthest crossing of a face the blade went
+// into and came back from (KeepFarthestFaceCrossings). A group closes once the blade meets none of
+// its tets: their pieces are then tets of their own. Deferred: a group splits once the blade meets
+// none of its tets. Either way, withdrawing the blade makes its crossings of faces points where the
+// crack ends, and after every split the vertices of the crack are parted where it separates their
+// tets.
 #pragma once
 
 #include <algorithm>
@@ -289,8 +290,12 @@ class CrackCutter {
   // oldest group there is now began (the blade's visit), and not one of an open unit's own crack
   // faces. The crack is there already.
   bool OnTheCrackAlready(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins) const;
-  // Records crossings as points (snapping them); adds the units they touch.
-  void RecordCrossings(const Crossings& found, std::vector<mesh::TetId>* touched);
+  // Records crossings as points (snapping them); adds the units they touch. `off_edges`: a face's
+  // crossing near an edge stays a point of the face, moved off the edge to the snap share (the
+  // blade came near the edge without crossing it: taken at the edge, the crack would reach
+  // every tet around it).
+  void RecordCrossings(const Crossings& found, std::vector<mesh::TetId>* touched,
+                       bool off_edges = false);
   // Where an edge's crossing comes from: the blade's edge swept across the edge in a step, or the
   // blade, having lain across the edge (a temporary point the pieces around stood on), left it.
   enum class EdgeCrossingFrom { kSweep, kBladeLeaving };
@@ -385,6 +390,26 @@ class CrackCutter {
   // any crossing: what was cut stays cut.
   void KeepEdgePointsLeft(const absl::flat_hash_map<mesh::TetId, BladeIn>& blade,
                           std::vector<mesh::TetId>* touched);
+  // Progressive: a face of the units in groups among `near` (those with points) the blade's edge
+  // crossed and at `pose` no longer does: where its crossing reached farther than kSnapReach of
+  // the tissue's edge there from the crack the points for good of the tets at the face span, and
+  // from every crack face at the face's corners (the blade went into a tet and came back the way
+  // it went: a reversal, a hairpin), the farthest such crossing becomes the face's point, snapped
+  // as any crossing, so the crack reaches where the blade did. Crossings on an edge of the face
+  // are the edge's (KeepEdgePointsLeft). `pose` null: every face it crossed (it is withdrawn).
+  void KeepFarthestFaceCrossings(const BladePose* pose, const std::vector<mesh::TetId>& near,
+                                 std::vector<mesh::TetId>* touched);
+  // Of `crossings` (barycentric on the face key's vertices), the one farthest from the crack the
+  // points for good of the tets at the face span (each tet's corners on the crack, edge and face
+  // points, and the segments and triangles between them) of those farther than kSnapReach of the
+  // tissue's edge there and from every crack face (NearACrackFace); none where the face has no
+  // such point of its own.
+  // Whether `x` (rest positions) lies within `reach` (m) of a crack face of a tet at one of
+  // `origins` that is not a piece of an open unit.
+  bool NearACrackFace(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins,
+                      double reach) const;
+  std::optional<Eigen::Vector3d> FarthestFromTheFacesCrack(
+      const FaceKey& key, const std::vector<Eigen::Vector3d>& crossings) const;
 
   // Splits the units (for good, or temporarily where `blade` has them), then parts the crack's
   // vertices and forgets temporary points no split uses.
@@ -550,6 +575,9 @@ class CrackCutter {
   std::vector<mesh::TetId> blade_units_;              // the units the blade was in at the last pose
   absl::flat_hash_map<EdgeKey, double> blade_edges_;  // its temporary edge points then
   absl::flat_hash_set<EdgeKey> advancing_;            // those standing in for edges' points
+  // The blade's crossings of each face it crosses (faces with no point for good), barycentric,
+  // since it began to cross it.
+  absl::flat_hash_map<FaceKey, std::vector<Eigen::Vector3d>, FaceKeyHash> crossed_faces_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;  // temporary piece -> its open tet
   // Temporary points by place (a face's key hash, or an open tet's id), and those used this pose.
   absl::flat_hash_map<std::uint64_t, mesh::VertexId> temporary_;

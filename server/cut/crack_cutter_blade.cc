@@ -1,9 +1,11 @@
 // CrackCutter: the blade's points in the units it is in (progressive; see crack_cutter.h).
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
 
 #include "base/check.h"
 #include "cut/crack_cutter.h"
+#include "geometry/point_triangle_distance.h"
 #include "geometry/segment_distance.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
@@ -182,6 +184,167 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
   }
   in.apex = PulledInside(geometry::BarycentricWeights(x[0], x[1], x[2], x[3], point));
   return in;
+}
+
+}  // namespace kerf::cut
+
+namespace kerf::cut {
+namespace {
+
+// The distance from `x` to the points, the segments between them and the triangles they span.
+double DistanceToSpan(const Eigen::Vector3d& x, const std::vector<Eigen::Vector3d>& on) {
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < on.size(); ++i) {
+    d = std::min(d, (x - on[i]).norm());
+    for (std::size_t j = i + 1; j < on.size(); ++j) {
+      const Eigen::Vector3d s = on[j] - on[i];
+      const double t = std::clamp((x - on[i]).dot(s) / std::max(s.squaredNorm(), 1e-300), 0.0, 1.0);
+      d = std::min(d, (x - on[i] - t * s).norm());
+      for (std::size_t k = j + 1; k < on.size(); ++k) {
+        if ((on[j] - on[i]).cross(on[k] - on[i]).squaredNorm() > 0) {
+          d = std::min(d, geometry::DistanceToTriangle(x, on[i], on[j], on[k]));
+        }
+      }
+    }
+  }
+  return d;
+}
+
+}  // namespace
+
+void CrackCutter::KeepFarthestFaceCrossings(const BladePose* pose, const std::vector<TetId>& near,
+                                            std::vector<TetId>* touched) {
+  absl::flat_hash_set<FaceKey, FaceKeyHash> now;
+  if (pose != nullptr) {
+    std::vector<TetId> cracked;
+    for (const TetId u : near) {
+      if (group_of_.contains(u)) cracked.push_back(u);
+    }
+    Crossings crossed;
+    crossed.faces = crossings_.FacesCrossedBy(
+        *pose, PlacedCornersOfAll(cracked), [&](const std::array<VertexId, 3>& f) {
+          return face_points_.contains(parting_.OriginKey(f[0], f[1], f[2]));
+        });
+    for (const FaceCrossing& c : ByOrigins(std::move(crossed)).faces) {
+      // On an edge of the face (in its plane), the blade's crossing is the edge's
+      // (KeepEdgePointsLeft). A face with every corner on the crack lies on it (the blade sweeping
+      // in its plane).
+      if (c.barycentric.minCoeff() <= kMinTemporaryWeight ||
+          std::all_of(c.face.begin(), c.face.end(), [&](VertexId v) { return OnTheCrack(v); })) {
+        continue;
+      }
+      if (now.insert(c.face).second) crossed_faces_[c.face].push_back(c.barycentric);
+    }
+  }
+  Crossings left;
+  for (auto it = crossed_faces_.begin(); it != crossed_faces_.end();) {
+    if (now.contains(it->first)) {
+      ++it;
+      continue;
+    }
+    if (!face_points_.contains(it->first)) {
+      if (const std::optional<Eigen::Vector3d> b =
+              FarthestFromTheFacesCrack(it->first, it->second)) {
+        left.faces.push_back({it->first, *b});
+      }
+    }
+    crossed_faces_.erase(it++);
+  }
+  if (left.faces.empty()) return;
+  std::sort(left.faces.begin(), left.faces.end(),
+            [](const FaceCrossing& a, const FaceCrossing& b) { return a.face < b.face; });
+  std::vector<TetId> around;
+  RecordCrossings(left, &around, /*off_edges=*/true);
+  Join(around);
+  touched->insert(touched->end(), around.begin(), around.end());
+}
+
+bool CrackCutter::NearACrackFace(const Eigen::Vector3d& x, std::span<const VertexId> origins,
+                                 double reach) const {
+  for (const VertexId o : origins) {
+    for (const TetId t : parting_.TetsAround(*mesh_, o)) {
+      const mesh::TetVertices& c = mesh_->tet(t);
+      for (const auto& f : mesh::kTetFaces) {
+        const FaceKey k = parting_.OriginKey(c[f[0]], c[f[1]], c[f[2]]);
+        if (crack_.contains(k) &&
+            geometry::DistanceToTriangle(x, mesh_->rest_position(k[0]), mesh_->rest_position(k[1]),
+                                         mesh_->rest_position(k[2])) < reach) {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
+    const FaceKey& key, const std::vector<Eigen::Vector3d>& crossings) const {
+  const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
+  const double reach = kSnapReach * LengthsOf(key).tissue_edge();
+  // The face's own points for good first: a crack the blade left as it went covers its crossings.
+  std::vector<Eigen::Vector3d> own;
+  for (int k = 0; k < 3; ++k) {
+    if (on_crack_.contains(key[k])) own.push_back(rest(key[k]));
+    if (const auto e = edge_points_.find(MakeEdgeKey(key[k], key[(k + 1) % 3]));
+        e != edge_points_.end()) {
+      const auto [low, high] = EdgeEnds(e->first);
+      own.push_back((1 - e->second.fraction) * rest(low) + e->second.fraction * rest(high));
+    }
+  }
+  if (own.empty()) return std::nullopt;
+  if (std::all_of(crossings.begin(), crossings.end(), [&](const Eigen::Vector3d& b) {
+        return DistanceToSpan(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]),
+                              own) <= reach;
+      })) {
+    return std::nullopt;
+  }
+  // Each tet's at the face points for good on the crack (rest positions): its corners on the
+  // crack, its edge points and its face points; the crack it will split by spans them.
+  std::vector<std::vector<Eigen::Vector3d>> tets;
+  for (const TetId unit : UnitsAround({key[0], key[1], key[2]})) {
+    const mesh::TetVertices c = CornersOf(unit);
+    std::vector<Eigen::Vector3d> on;
+    for (const VertexId v : c) {
+      if (on_crack_.contains(v)) on.push_back(rest(v));
+    }
+    for (const auto& [i, j] : mesh::kTetEdges) {
+      if (const auto e = edge_points_.find(MakeEdgeKey(c[i], c[j])); e != edge_points_.end()) {
+        const auto [low, high] = EdgeEnds(e->first);
+        on.push_back((1 - e->second.fraction) * rest(low) + e->second.fraction * rest(high));
+      }
+    }
+    for (const auto& f : mesh::kTetFaces) {
+      const FaceKey face = MakeFaceKey(c[f[0]], c[f[1]], c[f[2]]);
+      if (const auto p = face_points_.find(face); p != face_points_.end()) {
+        const Eigen::Vector3d& b = p->second.barycentric;
+        on.push_back(b[0] * rest(face[0]) + b[1] * rest(face[1]) + b[2] * rest(face[2]));
+      }
+    }
+    if (!on.empty()) tets.push_back(std::move(on));
+  }
+  if (tets.empty()) return std::nullopt;
+  const auto distance = [&](const Eigen::Vector3d& x) {
+    double d = std::numeric_limits<double>::infinity();
+    for (const std::vector<Eigen::Vector3d>& on : tets) d = std::min(d, DistanceToSpan(x, on));
+    return d;
+  };
+  // Farthest first; one the crack made already lies beside (a crack face of a tet split for
+  // good, at the face's corners) is cut.
+  std::vector<std::pair<double, int>> beyond;
+  for (int i = 0; i < static_cast<int>(crossings.size()); ++i) {
+    const Eigen::Vector3d& b = crossings[i];
+    const double d = distance(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]));
+    if (d > reach) beyond.emplace_back(-d, i);
+  }
+  std::sort(beyond.begin(), beyond.end());
+  for (const auto& [d, i] : beyond) {
+    const Eigen::Vector3d& b = crossings[i];
+    if (!NearACrackFace(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]), key,
+                        reach)) {
+      return b;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace kerf::cut

@@ -18,7 +18,8 @@ using mesh::VertexId;
 
 }  // namespace
 
-void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* touched) {
+void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* touched,
+                                  bool off_edges) {
   for (const EdgeCrossing& c : found.edges) {
     RecordEdgeCrossing(c.low, c.high, c.fraction, EdgeCrossingFrom::kSweep, touched);
   }
@@ -45,7 +46,8 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     // would end on the surface, and the blade's cut under it would be lost.
     const bool beside_surface = b[smallest] > kMinSnapFraction && !surface_.HasFace(c.face) &&
                                 surface_.HasEdge(c.face[i], c.face[j]);
-    if (b[smallest] < share && !beside_surface) {
+    const bool stays = off_edges || beside_surface;
+    if (b[smallest] < share && !stays) {
       // Beside the edge opposite the smallest weight: that edge's crossing.
       VertexId low = c.face[i], high = c.face[j];
       double fraction = b[j] / (b[i] + b[j]);

@@ -6,7 +6,9 @@
 
 #include "cut/crack_cutter.h"
 #include "geometry/tet_measures.h"
+#include "lab/crack_fidelity.h"
 #include "lab/progressive_case_paths.h"
+#include "mesh/box_lattice.h"
 #include "mesh/face_tiling.h"
 #include "mesh/mesh_validation.h"
 #include "support/unit_tet.h"
@@ -121,6 +123,29 @@ TEST(CrackCutterBlade, TheCrackEndsWhereTheBladeIsWithdrawn) {
       EXPECT_NEAR(p.y(), last.tip.y(), 1e-12);
     }
     EXPECT_GT(inner, 0u);
+  }
+}
+
+// Progressive: a blade through the whole depth of a bar goes into it, turns back inside a tet
+// and comes out the way it went in: the crack reaches where it turned (without the farthest
+// crossings of the faces it crossed kept as their points, the crack ended at the last edges it
+// crossed: 0.92 of the sweep covered).
+TEST(CrackCutterBlade, TheCrackReachesWhereTheBladeTurnedBack) {
+  {
+    const TetMesh bar = *mesh::MakeBoxLattice({.cells_x = 4, .cells_y = 4, .cells_z = 2});
+    TetMesh m = bar;
+    CrackCutter cutter = *CrackCutter::Create(&m, 1, kLoose);
+    lab::FidelityMeter meter(bar);
+    std::vector<BladePose> poses;
+    for (int i = 0; i <= 92; ++i) {
+      const double y = 1.8 - std::abs(2.3 - 0.05 * i);  // in from y = -0.5 to 1.8, and out
+      poses.push_back({0.01 * i, {2.3, y, -0.5}, {2.3, y, 2.5}});
+      ASSERT_TRUE(cutter.ApplyPose(poses.back()).ok());
+      if (i > 0) meter.AddStep(poses[i - 1], poses[i]);
+    }
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_GE(meter.Measure(meter.FindCrack(m)).coverage, 0.99);
   }
 }
 
