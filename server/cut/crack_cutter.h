@@ -402,8 +402,9 @@ class CrackCutter {
   // Of `crossings` (barycentric on the face key's vertices), the one farthest from the crack the
   // points for good of the tets at the face span (each tet's corners on the crack, edge and face
   // points, and the segments and triangles between them) of those farther than kSnapReach of the
-  // tissue's edge there and from every crack face (NearACrackFace); none where the face has no
-  // such point of its own.
+  // tissue's edge there and from every crack face (NearACrackFace), and not beside the tissue's
+  // surface (within kSnapReach, as a share of the face, of a corner or an edge of it on the
+  // surface); none where the face has no such point of its own.
   // Whether `x` (rest positions) lies within `reach` (m) of a crack face of a tet at one of
   // `origins` that is not a piece of an open unit.
   bool NearACrackFace(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins,

@@ -339,6 +339,15 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
   std::sort(beyond.begin(), beyond.end());
   for (const auto& [d, i] : beyond) {
     const Eigen::Vector3d& b = crossings[i];
+    // Beside the tissue's surface (within the snap reach, as a share of the face, of a corner or
+    // an edge of it) the crack stays off the surface (SnapWouldLayCrackOnSurface, the face points
+    // moved off its edges): a point there would cut the layer between them into slivers.
+    bool beside_surface = false;
+    for (int k = 0; k < 3; ++k) {
+      beside_surface = beside_surface || (surface_.HasVertex(key[k]) && b[k] > 1 - kSnapReach) ||
+                       (surface_.HasEdge(key[(k + 1) % 3], key[(k + 2) % 3]) && b[k] < kSnapReach);
+    }
+    if (beside_surface) continue;
     if (!NearACrackFace(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]), key,
                         reach)) {
       return b;

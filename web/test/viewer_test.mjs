@@ -101,8 +101,14 @@ try {
   const cut = await first.screenshot({ path: 'test/screenshots/after-cut.png' });
   check(!uncut.equals(cut), 'the picture changed with the cut');
   // Both tabs drew the same frames: the numbers each drew lately overlap, and they are at most
-  // at most half a second apart now (the two are read one after the other).
-  const [a, b] = await Promise.all(pages.map((p) => p.evaluate(() => window.kerf.recent)));
+  // half a second apart (read a few times: a tab the shared machine stalled for a moment
+  // catches up; one that stopped drawing does not).
+  let a = [], b = [];
+  for (let read = 0; read < 5; ++read) {
+    [a, b] = await Promise.all(pages.map((p) => p.evaluate(() => window.kerf.recent)));
+    if (Math.abs(a.at(-1) - b.at(-1)) <= 30) break;
+    await sleep(200);
+  }
   const common = a.filter((n) => b.includes(n));
   check(common.length > 100 && Math.abs(a.at(-1) - b.at(-1)) <= 30,
         `two tabs show the same frames (${common.length} frame numbers in common; now ${a.at(-1)} and ${b.at(-1)})`);
