@@ -406,7 +406,7 @@ class CrackCutter {
   // surface (within kSnapReach, as a share of the face, of a corner or an edge of it on the
   // surface); none where the face has no such point of its own.
   // Whether `x` (rest positions) lies within `reach` (m) of a crack face of a tet at one of
-  // `origins` that is not a piece of an open unit.
+  // `origins` (an open unit's too: while the blade is in it, its crack reaches the blade).
   bool NearACrackFace(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins,
                       double reach) const;
   std::optional<Eigen::Vector3d> FarthestFromTheFacesCrack(

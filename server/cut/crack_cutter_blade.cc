@@ -186,9 +186,6 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
   return in;
 }
 
-}  // namespace kerf::cut
-
-namespace kerf::cut {
 namespace {
 
 // The distance from `x` to the points, the segments between them and the triangles they span.
@@ -328,8 +325,7 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
     for (const std::vector<Eigen::Vector3d>& on : tets) d = std::min(d, DistanceToSpan(x, on));
     return d;
   };
-  // Farthest first; one the crack made already lies beside (a crack face of a tet split for
-  // good, at the face's corners) is cut.
+  // Farthest first; one a crack face at the face's corners lies beside is cut already.
   std::vector<std::pair<double, int>> beyond;
   for (int i = 0; i < static_cast<int>(crossings.size()); ++i) {
     const Eigen::Vector3d& b = crossings[i];
