@@ -278,15 +278,18 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
     const FaceKey& key, const std::vector<Eigen::Vector3d>& crossings) const {
   const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
   const double reach = kSnapReach * LengthsOf(key).tissue_edge();
+  // Adds the rest position of the edge's point for good, if it has one.
+  const auto add_edge_point = [&](VertexId a, VertexId b, std::vector<Eigen::Vector3d>* on) {
+    if (const auto e = edge_points_.find(MakeEdgeKey(a, b)); e != edge_points_.end()) {
+      const auto [low, high] = EdgeEnds(e->first);
+      on->push_back((1 - e->second.fraction) * rest(low) + e->second.fraction * rest(high));
+    }
+  };
   // The face's own points for good first: a crack the blade left as it went covers its crossings.
   std::vector<Eigen::Vector3d> own;
   for (int k = 0; k < 3; ++k) {
     if (on_crack_.contains(key[k])) own.push_back(rest(key[k]));
-    if (const auto e = edge_points_.find(MakeEdgeKey(key[k], key[(k + 1) % 3]));
-        e != edge_points_.end()) {
-      const auto [low, high] = EdgeEnds(e->first);
-      own.push_back((1 - e->second.fraction) * rest(low) + e->second.fraction * rest(high));
-    }
+    add_edge_point(key[k], key[(k + 1) % 3], &own);
   }
   if (own.empty()) return std::nullopt;
   if (std::all_of(crossings.begin(), crossings.end(), [&](const Eigen::Vector3d& b) {
@@ -304,12 +307,7 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
     for (const VertexId v : c) {
       if (on_crack_.contains(v)) on.push_back(rest(v));
     }
-    for (const auto& [i, j] : mesh::kTetEdges) {
-      if (const auto e = edge_points_.find(MakeEdgeKey(c[i], c[j])); e != edge_points_.end()) {
-        const auto [low, high] = EdgeEnds(e->first);
-        on.push_back((1 - e->second.fraction) * rest(low) + e->second.fraction * rest(high));
-      }
-    }
+    for (const auto& [i, j] : mesh::kTetEdges) add_edge_point(c[i], c[j], &on);
     for (const auto& f : mesh::kTetFaces) {
       const FaceKey face = MakeFaceKey(c[f[0]], c[f[1]], c[f[2]]);
       if (const auto p = face_points_.find(face); p != face_points_.end()) {
