@@ -147,10 +147,9 @@ bool CrackCutter::BisectionLeavesSliver(VertexId low, VertexId high, double frac
       if (corners[k] != low && corners[k] != high) continue;
       std::array<Eigen::Vector3d, 4> half = x;  // the half without corners[k]
       half[k] = point;
-      if (geometry::MeasureTet(half[0], half[1], half[2], half[3]).min_dihedral_deg <
-          kSliverAngleDeg) {
-        return true;
-      }
+      const std::array<double, 6> angles =
+          geometry::DihedralAnglesDeg(half[0], half[1], half[2], half[3]);
+      if (*std::min_element(angles.begin(), angles.end()) < kSliverAngleDeg) return true;
     }
   }
   return false;

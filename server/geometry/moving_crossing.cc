@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <initializer_list>
 #include <utility>
 
 namespace kerf::geometry {
@@ -86,28 +85,34 @@ Times CoplanarTimes(const Motion& u, const Motion& v, const Motion& w) {
   return times;
 }
 
+// The box a group of points sweeps over the interval.
+struct Box {
+  Eigen::Vector3d low, high;
+};
+template <std::size_t N>
+Box SweptBox(const std::array<const Motion*, N>& motions) {
+  Box box{motions[0]->from.cwiseMin(motions[0]->to), motions[0]->from.cwiseMax(motions[0]->to)};
+  for (std::size_t k = 1; k < N; ++k) {
+    box.low = box.low.cwiseMin(motions[k]->from).cwiseMin(motions[k]->to);
+    box.high = box.high.cwiseMax(motions[k]->from).cwiseMax(motions[k]->to);
+  }
+  return box;
+}
+
 // Whether the boxes the two groups of points sweep over the interval are apart: then they
 // never meet.
-bool SweptBoxesApart(std::initializer_list<const Motion*> one,
-                     std::initializer_list<const Motion*> other) {
-  const auto box = [](std::initializer_list<const Motion*> motions) {
-    Eigen::Vector3d low = (*motions.begin())->from, high = low;
-    for (const Motion* m : motions) {
-      low = low.cwiseMin(m->from).cwiseMin(m->to);
-      high = high.cwiseMax(m->from).cwiseMax(m->to);
-    }
-    return std::pair{low, high};
-  };
-  const auto [low_a, high_a] = box(one);
-  const auto [low_b, high_b] = box(other);
-  return (low_a.array() > high_b.array()).any() || (low_b.array() > high_a.array()).any();
+template <std::size_t N, std::size_t M>
+bool SweptBoxesApart(const std::array<const Motion*, N>& one,
+                     const std::array<const Motion*, M>& other) {
+  const Box a = SweptBox(one), b = SweptBox(other);
+  return (a.low.array() > b.high.array()).any() || (b.low.array() > a.high.array()).any();
 }
 
 }  // namespace
 
 std::optional<MovingEdgeCrossing> FirstEdgeCrossing(const Motion& a, const Motion& b,
                                                     const Motion& p, const Motion& q) {
-  if (SweptBoxesApart({&a, &b}, {&p, &q})) return std::nullopt;
+  if (SweptBoxesApart<2, 2>({&a, &b}, {&p, &q})) return std::nullopt;
   const auto from_a = [&](const Motion& m) { return Motion{m.from - a.from, m.to - a.to}; };
   for (const double t : CoplanarTimes(from_a(b), from_a(p), from_a(q))) {
     // Closest points of the two lines at time t (they are in one plane).
@@ -126,7 +131,7 @@ std::optional<MovingEdgeCrossing> FirstEdgeCrossing(const Motion& a, const Motio
 
 std::optional<MovingPointCrossing> FirstPointCrossing(const Motion& p, const Motion& a,
                                                       const Motion& b, const Motion& c) {
-  if (SweptBoxesApart({&p}, {&a, &b, &c})) return std::nullopt;
+  if (SweptBoxesApart<1, 3>({&p}, {&a, &b, &c})) return std::nullopt;
   const auto from_a = [&](const Motion& m) { return Motion{m.from - a.from, m.to - a.to}; };
   for (const double t : CoplanarTimes(from_a(b), from_a(c), from_a(p))) {
     const Eigen::Vector3d at_a = a.At(t), at_b = b.At(t), at_c = c.At(t), at_p = p.At(t);
