@@ -53,6 +53,7 @@
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
+#include "absl/functional/function_ref.h"
 #include "absl/status/statusor.h"
 #include "cut/blade.h"
 #include "cut/blade_crossings.h"
@@ -290,6 +291,11 @@ class CrackCutter {
   // oldest group there is now began (the blade's visit), and not one of an open unit's own crack
   // faces. The crack is there already.
   bool OnTheCrackAlready(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins) const;
+  // Whether `x` (rest positions) lies within `reach` (m) of a crack face of a tet `t` at one of
+  // `origins` that `counts(t, key, face)` accepts.
+  bool CrackFaceWithin(
+      const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins, double reach,
+      absl::FunctionRef<bool(mesh::TetId, const FaceKey&, const CrackFace&)> counts) const;
   // Records crossings as points (snapping them); adds the units they touch. `off_edges`: a face's
   // crossing near an edge stays a point of the face, moved off the edge to the snap share (the
   // blade came near the edge without crossing it: taken at the edge, the crack would reach
@@ -399,16 +405,16 @@ class CrackCutter {
   // are the edge's (KeepEdgePointsLeft). `pose` null: every face it crossed (it is withdrawn).
   void KeepFarthestFaceCrossings(const BladePose* pose, const std::vector<mesh::TetId>& near,
                                  std::vector<mesh::TetId>* touched);
+  // Whether `x` (rest positions) lies within `reach` (m) of a crack face of a tet at one of
+  // `origins` (an open unit's too: while the blade is in it, its crack reaches the blade).
+  bool NearACrackFace(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins,
+                      double reach) const;
   // Of `crossings` (barycentric on the face key's vertices), the one farthest from the crack the
   // points for good of the tets at the face span (each tet's corners on the crack, edge and face
   // points, and the segments and triangles between them) of those farther than kSnapReach of the
   // tissue's edge there and from every crack face (NearACrackFace), and not beside the tissue's
   // surface (within kSnapReach, as a share of the face, of a corner or an edge of it on the
   // surface); none where the face has no such point of its own.
-  // Whether `x` (rest positions) lies within `reach` (m) of a crack face of a tet at one of
-  // `origins` (an open unit's too: while the blade is in it, its crack reaches the blade).
-  bool NearACrackFace(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins,
-                      double reach) const;
   std::optional<Eigen::Vector3d> FarthestFromTheFacesCrack(
       const FaceKey& key, const std::vector<Eigen::Vector3d>& crossings) const;
 

@@ -258,20 +258,8 @@ void CrackCutter::KeepFarthestFaceCrossings(const BladePose* pose, const std::ve
 
 bool CrackCutter::NearACrackFace(const Eigen::Vector3d& x, std::span<const VertexId> origins,
                                  double reach) const {
-  for (const VertexId o : origins) {
-    for (const TetId t : parting_.TetsAround(*mesh_, o)) {
-      const mesh::TetVertices& c = mesh_->tet(t);
-      for (const auto& f : mesh::kTetFaces) {
-        const FaceKey k = parting_.OriginKey(c[f[0]], c[f[1]], c[f[2]]);
-        if (crack_.contains(k) &&
-            geometry::DistanceToTriangle(x, mesh_->rest_position(k[0]), mesh_->rest_position(k[1]),
-                                         mesh_->rest_position(k[2])) < reach) {
-          return true;
-        }
-      }
-    }
-  }
-  return false;
+  return CrackFaceWithin(x, origins, reach,
+                         [](TetId, const FaceKey&, const CrackFace&) { return true; });
 }
 
 std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(

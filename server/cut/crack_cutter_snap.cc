@@ -66,27 +66,17 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
   }
 }
 
-bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
-                                    std::span<const VertexId> origins) const {
-  std::size_t visit = poses_;
-  for (const auto& [root, since] : group_since_) visit = std::min(visit, since);
-  // None made before the visit: nothing to look for.
-  if (crack_faces_since_.empty() || crack_faces_since_.begin()->first >= visit) return false;
-  const double reach = kSnapReach * LengthsOf(origins).tissue_edge();
+bool CrackCutter::CrackFaceWithin(
+    const Eigen::Vector3d& x, std::span<const VertexId> origins, double reach,
+    absl::FunctionRef<bool(TetId, const FaceKey&, const CrackFace&)> counts) const {
   for (const VertexId o : origins) {
     for (const TetId t : parting_.TetsAround(*mesh_, o)) {
-      // An open unit's own crack faces are the crack being made, up to the blade.
-      const auto owner = open_.find(UnitOf(t));
       const mesh::TetVertices& c = mesh_->tet(t);
       for (const auto& f : mesh::kTetFaces) {
         const FaceKey key = parting_.OriginKey(c[f[0]], c[f[1]], c[f[2]]);
         const auto face = crack_.find(key);
-        if (face == crack_.end() || face->second.since >= visit) continue;
-        if (owner != open_.end() &&
-            std::binary_search(owner->second.crack.begin(), owner->second.crack.end(), key)) {
-          continue;
-        }
-        if (geometry::DistanceToTriangle(x, mesh_->rest_position(key[0]),
+        if (face != crack_.end() && counts(t, key, face->second) &&
+            geometry::DistanceToTriangle(x, mesh_->rest_position(key[0]),
                                          mesh_->rest_position(key[1]),
                                          mesh_->rest_position(key[2])) < reach) {
           return true;
@@ -95,6 +85,24 @@ bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
     }
   }
   return false;
+}
+
+bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
+                                    std::span<const VertexId> origins) const {
+  std::size_t visit = poses_;
+  for (const auto& [root, since] : group_since_) visit = std::min(visit, since);
+  // None made before the visit: nothing to look for.
+  if (crack_faces_since_.empty() || crack_faces_since_.begin()->first >= visit) return false;
+  return CrackFaceWithin(x, origins, kSnapReach * LengthsOf(origins).tissue_edge(),
+                         [&](TetId t, const FaceKey& key, const CrackFace& face) {
+                           if (face.since >= visit) return false;
+                           // An open unit's own crack faces are the crack being made, up to the
+                           // blade.
+                           const auto owner = open_.find(UnitOf(t));
+                           return owner == open_.end() ||
+                                  !std::binary_search(owner->second.crack.begin(),
+                                                      owner->second.crack.end(), key);
+                         });
 }
 
 void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fraction,
