@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <regex>
 #include <string>
 
 #include "absl/strings/match.h"
@@ -629,6 +630,29 @@ TEST(KerfCli, NoCommandExitsTwoAndFailuresExitOneWithAMessage) {
   run = Kerf("mesh info /no/such.msh");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_THAT(run.output, HasSubstr("kerf: /no/such.msh: cannot open file"));
+}
+
+// `kerf help` names every option each command's own usage does (printed with its refusal of an
+// unknown option), so a newcomer reading the overview misses none.
+TEST(KerfCli, HelpNamesEveryOptionOfEachCommand) {
+  const CliResult help = Kerf("help");
+  ASSERT_EQ(help.exit_code, 0);
+  for (const std::string command :
+       {"cut x", "path hand x", "experiment hand-cuts", "experiment stability", "replay x",
+        "sim run", "chart x", "static x"}) {
+    const CliResult run = Kerf(command + " --no-such-option");
+    EXPECT_EQ(run.exit_code, 1) << command;
+    const std::size_t usage = run.output.find("usage:");
+    ASSERT_NE(usage, std::string::npos) << command << ": " << run.output;
+    const std::string text = run.output.substr(usage);
+    const std::regex option("--[a-z][a-z-]*");
+    int options = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), option);
+         it != std::sregex_iterator(); ++it, ++options) {
+      EXPECT_THAT(help.output, HasSubstr(it->str())) << command;
+    }
+    EXPECT_GT(options, 0) << command;
+  }
 }
 
 }  // namespace

@@ -43,7 +43,9 @@ done
 owners=$(for lib in $(printf '%s\n' "${libs[@]}" | sort -u); do echo "$lib"; echo "/usr$lib"; done |
          xargs dpkg -S 2>/dev/null | sed 's|: /usr/|: /|' || true)
 for lib in $(printf '%s\n' "${libs[@]}" | sort -u); do
-  package=$(echo "$owners" | awk -v lib="${lib#/usr}" '$2 == lib {sub(/:.*/, "", $1); print $1; exit}')
+  # From a here-string, not `echo | awk`: awk's exit at its match while echo still wrote (the
+  # owners run past one 4 KB write) killed echo (SIGPIPE) and, under pipefail, the script.
+  package=$(awk -v lib="${lib#/usr}" '$2 == lib {sub(/:.*/, "", $1); print $1; exit}' <<<"$owners")
   [ -n "$package" ] || fail "$lib, loaded by a binary of the image, is owned by no package"
   [[ "$allowed" == *" $package "* ]] ||
     fail "$lib comes from $package, which is not a runtime package in scripts/packages.txt"
