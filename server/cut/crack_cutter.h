@@ -405,14 +405,11 @@ class CrackCutter {
   // are the edge's (KeepEdgePointsLeft). `pose` null: every face it crossed (it is withdrawn).
   void KeepFarthestFaceCrossings(const BladePose* pose, const std::vector<mesh::TetId>& near,
                                  std::vector<mesh::TetId>* touched);
-  // Whether `x` (rest positions) lies within `reach` (m) of a crack face of a tet at one of
-  // `origins` (an open unit's too: while the blade is in it, its crack reaches the blade).
-  bool NearACrackFace(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins,
-                      double reach) const;
   // Of `crossings` (barycentric on the face key's vertices), the one farthest from the crack the
   // points for good of the tets at the face span (each tet's corners on the crack, edge and face
   // points, and the segments and triangles between them) of those farther than kSnapReach of the
-  // tissue's edge there and from every crack face (NearACrackFace), and not beside the tissue's
+  // tissue's edge there and from every crack face at the face's corners (an open unit's too:
+  // while the blade is in it, its crack reaches the blade), and not beside the tissue's
   // surface (within kSnapReach, as a share of the face, of a corner or an edge of it on the
   // surface); none where the face has no such point of its own.
   std::optional<Eigen::Vector3d> FarthestFromTheFacesCrack(

@@ -256,12 +256,6 @@ void CrackCutter::KeepFarthestFaceCrossings(const BladePose* pose, const std::ve
   touched->insert(touched->end(), around.begin(), around.end());
 }
 
-bool CrackCutter::NearACrackFace(const Eigen::Vector3d& x, std::span<const VertexId> origins,
-                                 double reach) const {
-  return CrackFaceWithin(x, origins, reach,
-                         [](TetId, const FaceKey&, const CrackFace&) { return true; });
-}
-
 std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
     const FaceKey& key, const std::vector<Eigen::Vector3d>& crossings) const {
   const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
@@ -330,8 +324,8 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
                        (surface_.HasEdge(key[(k + 1) % 3], key[(k + 2) % 3]) && b[k] < kSnapReach);
     }
     if (beside_surface) continue;
-    if (!NearACrackFace(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]), key,
-                        reach)) {
+    if (!CrackFaceWithin(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]), key,
+                         reach, [](TetId, const FaceKey&, const CrackFace&) { return true; })) {
       return b;
     }
   }

@@ -637,6 +637,7 @@ TEST(KerfCli, NoCommandExitsTwoAndFailuresExitOneWithAMessage) {
 TEST(KerfCli, HelpNamesEveryOptionOfEachCommand) {
   const CliResult help = Kerf("help");
   ASSERT_EQ(help.exit_code, 0);
+  const std::regex option("--[a-z][a-z-]*");
   for (const std::string command :
        {"cut x", "path hand x", "experiment hand-cuts", "experiment stability", "replay x",
         "sim run", "chart x", "static x"}) {
@@ -645,7 +646,6 @@ TEST(KerfCli, HelpNamesEveryOptionOfEachCommand) {
     const std::size_t usage = run.output.find("usage:");
     ASSERT_NE(usage, std::string::npos) << command << ": " << run.output;
     const std::string text = run.output.substr(usage);
-    const std::regex option("--[a-z][a-z-]*");
     int options = 0;
     for (auto it = std::sregex_iterator(text.begin(), text.end(), option);
          it != std::sregex_iterator(); ++it, ++options) {
