@@ -138,10 +138,13 @@ TEST(Session, ALongTremblingCutKeepsTheChangeLogAndMemoryBounded) {
   EXPECT_LT(most_events, 2'000u);
   EXPECT_LT(most_dead_tets, 2 * sim::Simulation::kIdReuseBatch);
   EXPECT_LT(most_dead_vertices, 2 * sim::Simulation::kIdReuseBatch);
-  // Without reuse the process grew from 18 to 94 MB over the minute; with it, 18.9 to 19.0 MB.
+  // Without reuse the process grew from 18 to 94 MB over the minute, about 50 MB of it after
+  // the first third; with reuse it grows by 0.1-1.5 MB there (the cut itself grows, and the
+  // allocator keeps what threads freed), so a sixth of the leak is the bound.
+  constexpr std::size_t kMostGrowth = 8 << 20;  // bytes
   const std::size_t resident = ResidentBytes();
   if (resident != 0) {
-    EXPECT_LT(resident, 1.05 * resident_at_third);
+    EXPECT_LT(resident, resident_at_third + kMostGrowth);
   }
   std::cout << "trembling cut of " << seconds << " s: resident " << resident_at_third / 1024
             << " kB a third in, " << resident / 1024 << " kB at the end; most dead slots "
