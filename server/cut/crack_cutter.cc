@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "base/check.h"
+#include "cut/opening_point.h"
 #include "geometry/point_triangle_distance.h"
 #include "geometry/tet_measures.h"
 
@@ -279,7 +280,7 @@ void CrackCutter::OpenShutCrackFaces() {
   for (const FaceKey& key : shut) {
     const std::vector<TetId> units = UnitsAround({key[0], key[1], key[2]});
     if (units.size() < 2) continue;  // on the tissue's boundary
-    face_points_[key] = {Eigen::Vector3d::Constant(1.0 / 3)};
+    face_points_[key] = {OpeningPointAt(key, units)};
     // Its corners are on the crack (points the cut made among them too), so the face rule puts
     // the three triangles through the new point on it.
     on_crack_.insert(key.begin(), key.end());
@@ -289,6 +290,20 @@ void CrackCutter::OpenShutCrackFaces() {
   Join(touched);
   if (mode_ == CutMode::kProgressive) SplitUnits(touched, {});
   SplitReadyGroups(nullptr);
+}
+
+Eigen::Vector3d CrackCutter::OpeningPointAt(const FaceKey& key,
+                                            const std::vector<TetId>& units) const {
+  const std::array<Eigen::Vector3d, 3> face = {
+      mesh_->rest_position(key[0]), mesh_->rest_position(key[1]), mesh_->rest_position(key[2])};
+  std::vector<Eigen::Vector3d> apexes;
+  for (const TetId u : units) {
+    for (const VertexId v : CornersOf(u)) {
+      if (std::find(key.begin(), key.end(), v) == key.end())
+        apexes.push_back(mesh_->rest_position(v));
+    }
+  }
+  return OpeningPointWeights(face, apexes);
 }
 
 // Deferred groups.

@@ -534,6 +534,9 @@ class CrackCutter {
   // parts (its corners all lie on the crack's front, where the front turns) cannot open; a point
   // in its middle, on the crack and parted, opens it.
   void OpenShutCrackFaces();
+  // The weights on `key`'s corners of the point it opens at, `units` the tets beside it (see
+  // cut/opening_point.h).
+  Eigen::Vector3d OpeningPointAt(const FaceKey& key, const std::vector<mesh::TetId>& units) const;
 
   mesh::TetMesh* mesh_;
   BladeCrossings crossings_;
