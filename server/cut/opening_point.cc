@@ -5,12 +5,9 @@
 #include "geometry/tet_measures.h"
 
 namespace kerf::cut {
-namespace {
 
-// The smallest dihedral angle (degrees) of the fan tets from `point` over `face`'s edges to each
-// of `apexes`.
-double SmallestFanAngle(const std::array<Eigen::Vector3d, 3>& face, const Eigen::Vector3d& point,
-                        std::span<const Eigen::Vector3d> apexes) {
+double SmallestFanAngleDeg(const std::array<Eigen::Vector3d, 3>& face, const Eigen::Vector3d& point,
+                           std::span<const Eigen::Vector3d> apexes) {
   double smallest = 180;
   for (const Eigen::Vector3d& apex : apexes) {
     for (int k = 0; k < 3; ++k) {
@@ -21,8 +18,6 @@ double SmallestFanAngle(const std::array<Eigen::Vector3d, 3>& face, const Eigen:
   }
   return smallest;
 }
-
-}  // namespace
 
 Eigen::Vector3d OpeningPointWeights(const std::array<Eigen::Vector3d, 3>& face,
                                     std::span<const Eigen::Vector3d> apexes) {
@@ -38,7 +33,7 @@ Eigen::Vector3d OpeningPointWeights(const std::array<Eigen::Vector3d, 3>& face,
   double best_angle = -1;
   for (const Eigen::Vector3d& w : candidates) {
     const Eigen::Vector3d point = w[0] * face[0] + w[1] * face[1] + w[2] * face[2];
-    const double angle = SmallestFanAngle(face, point, apexes);
+    const double angle = SmallestFanAngleDeg(face, point, apexes);
     if (angle > best_angle + 1e-9) {
       best_angle = angle;
       best = w;

@@ -12,6 +12,11 @@
 
 namespace kerf::cut {
 
+// The smallest dihedral angle (degrees) of the fan tets from `point` over `face`'s edges to each
+// of `apexes`: what the choice below makes largest.
+double SmallestFanAngleDeg(const std::array<Eigen::Vector3d, 3>& face, const Eigen::Vector3d& point,
+                           std::span<const Eigen::Vector3d> apexes);
+
 // Barycentric weights (summing to 1) on `face`'s corners of the point to open it at: among the
 // centroid and six points leaning towards or away from one corner, the one whose fan tets (the
 // point, an edge of the face and one of `apexes`, the fourth corners of the tets beside the

@@ -6,8 +6,6 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/tet_measures.h"
-
 namespace kerf::cut {
 namespace {
 
@@ -17,20 +15,6 @@ const std::array<Eigen::Vector3d, 3> kFace = {Eigen::Vector3d(0, 0, 0), Eigen::V
 
 Eigen::Vector3d PointAt(const Eigen::Vector3d& weights) {
   return weights[0] * kFace[0] + weights[1] * kFace[1] + weights[2] * kFace[2];
-}
-
-// The smallest dihedral angle (degrees) of the fan tets from `point` over `face` to `apexes`.
-double SmallestFanAngle(const std::array<Eigen::Vector3d, 3>& face, const Eigen::Vector3d& point,
-                        const std::vector<Eigen::Vector3d>& apexes) {
-  double smallest = 180;
-  for (const Eigen::Vector3d& apex : apexes) {
-    for (int k = 0; k < 3; ++k) {
-      const std::array<double, 6> angles =
-          geometry::DihedralAnglesDeg(apex, point, face[k], face[(k + 1) % 3]);
-      smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
-    }
-  }
-  return smallest;
 }
 
 TEST(OpeningPoint, ASymmetricFaceOpensAtItsCentroid) {
@@ -54,8 +38,8 @@ TEST(OpeningPoint, AFlatFaceOpensNearerItsFarCorner) {
     return w[0] * face[0] + w[1] * face[1] + w[2] * face[2];
   };
   const double centroid_angle =
-      SmallestFanAngle(face, at(Eigen::Vector3d::Constant(1.0 / 3)), apexes);
-  const double chosen_angle = SmallestFanAngle(face, at(weights), apexes);
+      SmallestFanAngleDeg(face, at(Eigen::Vector3d::Constant(1.0 / 3)), apexes);
+  const double chosen_angle = SmallestFanAngleDeg(face, at(weights), apexes);
   EXPECT_GT(chosen_angle, centroid_angle + 1)
       << "centroid " << centroid_angle << " deg, chosen " << chosen_angle << " deg";
 }
@@ -69,8 +53,8 @@ TEST(OpeningPoint, ThePointIsInsideTheFaceAndNoWorseThanTheCentroid) {
     const Eigen::Vector3d weights = OpeningPointWeights(kFace, apexes);
     EXPECT_NEAR(weights.sum(), 1, 1e-12);
     EXPECT_GT(weights.minCoeff(), 0.1);
-    EXPECT_GE(SmallestFanAngle(kFace, PointAt(weights), apexes),
-              SmallestFanAngle(kFace, PointAt(Eigen::Vector3d::Constant(1.0 / 3)), apexes));
+    EXPECT_GE(SmallestFanAngleDeg(kFace, PointAt(weights), apexes),
+              SmallestFanAngleDeg(kFace, PointAt(Eigen::Vector3d::Constant(1.0 / 3)), apexes));
   }
 }
 
