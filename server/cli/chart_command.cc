@@ -14,7 +14,7 @@
 namespace kerf::cli {
 namespace {
 
-constexpr absl::string_view kUsage = "kerf chart TRADEOFF.json --out PREFIX";
+constexpr absl::string_view kChartUsage = "kerf chart TRADEOFF.json --out PREFIX";
 
 // Marks by integrator (as they appear in TradeoffRow.integration), colours by law.
 struct Series {
@@ -92,10 +92,10 @@ absl::StatusOr<std::string> RunChartCommand(const std::vector<absl::string_view>
   CommandArgs rest(args);
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> out = rest.TakeOption("--out", 1);
   if (!out.ok()) return out.status();
-  absl::StatusOr<std::vector<absl::string_view>> files = rest.TakePositionals(1, kUsage);
+  absl::StatusOr<std::vector<absl::string_view>> files = rest.TakePositionals(1, kChartUsage);
   if (!files.ok()) return files.status();
   if (!out->has_value())
-    return absl::InvalidArgumentError(absl::StrCat("--out is required: ", kUsage));
+    return absl::InvalidArgumentError(absl::StrCat("--out is required: ", kChartUsage));
   absl::StatusOr<std::string> text = mesh::ReadTextFile((*files)[0]);
   if (!text.ok()) return text.status();
   kerf::v1::TradeoffExperiment experiment;

@@ -30,7 +30,7 @@
 namespace kerf::cli {
 namespace {
 
-constexpr absl::string_view kUsage =
+constexpr absl::string_view kCutUsage =
     "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end] "
     "[--uncovered OUT.csv] "
     "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
@@ -357,7 +357,7 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   const bool deferred = rest.TakeFlag("--deferred");
   if (rest.TakeFlag("--progressive") && deferred) {
     return absl::InvalidArgumentError(
-        absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kUsage));
+        absl::StrCat("--progressive and --deferred exclude each other\nusage: ", kCutUsage));
   }
   if (deferred) options.mode = cut::CutMode::kDeferred;
   for (auto [flag, into] : {std::pair<absl::string_view, double*>{"--min-temporary-height",
@@ -379,7 +379,7 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
     if (value->has_value()) *into = std::string((**value)[0]);
   }
   absl::StatusOr<std::optional<absl::string_view>> check =
-      rest.TakeChoice("--check", {"every", "end"}, kUsage);
+      rest.TakeChoice("--check", {"every", "end"}, kCutUsage);
   if (!check.ok()) return check.status();
   if (check->has_value()) {
     options.check = **check == "every" ? CheckWhen::kEveryPose : CheckWhen::kEnd;
@@ -392,11 +392,11 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> out_arg =
       rest.TakeOption("--out", 1);
   if (!out_arg.ok()) return out_arg.status();
-  absl::StatusOr<std::vector<absl::string_view>> mesh_arg = rest.TakePositionals(1, kUsage);
+  absl::StatusOr<std::vector<absl::string_view>> mesh_arg = rest.TakePositionals(1, kCutUsage);
   if (!mesh_arg.ok()) return mesh_arg.status();
   if (!path_arg->has_value() || !out_arg->has_value()) {
     return absl::InvalidArgumentError(
-        absl::StrCat("--path and --out are required\nusage: ", kUsage));
+        absl::StrCat("--path and --out are required\nusage: ", kCutUsage));
   }
   absl::StatusOr<mesh::TetMesh> m = LoadMeshOrScene((*mesh_arg)[0]);
   if (!m.ok()) return m.status();

@@ -16,7 +16,7 @@
 
 namespace {
 
-constexpr absl::string_view kUsage =
+constexpr absl::string_view kKerfUsage =
     "usage: kerf demo [--json]\n"
     "       kerf mesh info FILE [--json]\n"
     "       kerf mesh lattice NX NY NZ [--size X Y Z] --out FILE\n"
@@ -45,7 +45,7 @@ constexpr absl::string_view kUsage =
 int main(int argc, char** argv) {
   const std::vector<absl::string_view> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "help") {
-    std::cout << kUsage;
+    std::cout << kKerfUsage;
     return args.empty() ? 2 : 0;
   }
   const std::vector<absl::string_view> rest(args.begin() + 1, args.end());
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   } else if (args[0] == "demo") {
     result = kerf::cli::RunDemoCommand(rest);
   } else {
-    std::cerr << "kerf: unknown command '" << args[0] << "'\n" << kUsage;
+    std::cerr << "kerf: unknown command '" << args[0] << "'\n" << kKerfUsage;
     return 2;
   }
   if (!result.ok()) {

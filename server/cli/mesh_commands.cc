@@ -21,15 +21,17 @@ absl::StatusOr<std::string> Info(CommandArgs args) {
 }
 
 absl::StatusOr<std::string> Lattice(CommandArgs args) {
-  constexpr absl::string_view kUsage = "kerf mesh lattice NX NY NZ [--size X Y Z] --out FILE";
+  constexpr absl::string_view kLatticeUsage =
+      "kerf mesh lattice NX NY NZ [--size X Y Z] --out FILE";
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> size = args.TakeOption("--size", 3);
   if (!size.ok()) return size.status();
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> out = args.TakeOption("--out", 1);
   if (!out.ok()) return out.status();
   if (!out->has_value()) {
-    return absl::InvalidArgumentError(absl::StrCat("--out FILE is required\nusage: ", kUsage));
+    return absl::InvalidArgumentError(
+        absl::StrCat("--out FILE is required\nusage: ", kLatticeUsage));
   }
-  absl::StatusOr<std::vector<absl::string_view>> counts = args.TakePositionals(3, kUsage);
+  absl::StatusOr<std::vector<absl::string_view>> counts = args.TakePositionals(3, kLatticeUsage);
   if (!counts.ok()) return counts.status();
 
   mesh::BoxLatticeSpec spec;

@@ -9,7 +9,7 @@
 namespace kerf::cli {
 namespace {
 
-constexpr absl::string_view kUsage =
+constexpr absl::string_view kPathUsage =
     "kerf path hand|vertices|edges|face-plane MESH --out PATH.json [--seed N] [--duration S] "
     "[--rate HZ]";
 
@@ -39,10 +39,10 @@ absl::StatusOr<std::string> RunPathCommand(const std::vector<absl::string_view>&
     if (!(*parsed > 0)) return absl::InvalidArgumentError(absl::StrCat(flag, " must be positive"));
     *into = *parsed;
   }
-  absl::StatusOr<std::vector<absl::string_view>> positionals = rest.TakePositionals(2, kUsage);
+  absl::StatusOr<std::vector<absl::string_view>> positionals = rest.TakePositionals(2, kPathUsage);
   if (!positionals.ok()) return positionals.status();
   if (!out->has_value()) {
-    return absl::InvalidArgumentError(absl::StrCat("--out is required\nusage: ", kUsage));
+    return absl::InvalidArgumentError(absl::StrCat("--out is required\nusage: ", kPathUsage));
   }
   absl::StatusOr<lab::PathFamily> family = lab::ParsePathFamily((*positionals)[0]);
   if (!family.ok()) return family.status();

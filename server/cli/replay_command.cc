@@ -25,7 +25,7 @@
 namespace kerf::cli {
 namespace {
 
-constexpr absl::string_view kUsage =
+constexpr absl::string_view kReplayUsage =
     "kerf replay JOURNAL [--speed X] [--listen HOST:PORT] [--export-at T,T,...|end] "
     "[--out-prefix P] [--linger S] [--json]";
 
@@ -109,7 +109,8 @@ absl::StatusOr<std::string> RunReplayCommand(const std::vector<absl::string_view
     if (!taken.ok()) return taken.status();
     *arg = *std::move(taken);
   }
-  absl::StatusOr<std::vector<absl::string_view>> journal_arg = rest.TakePositionals(1, kUsage);
+  absl::StatusOr<std::vector<absl::string_view>> journal_arg =
+      rest.TakePositionals(1, kReplayUsage);
   if (!journal_arg.ok()) return journal_arg.status();
   const std::string journal((*journal_arg)[0]);
 

@@ -14,7 +14,7 @@
 namespace kerf::cli {
 namespace {
 
-constexpr absl::string_view kUsage =
+constexpr absl::string_view kSimUsage =
     "kerf sim run [SCENE] [--steps N] [--vtu-out DIR] | kerf sim list";
 constexpr absl::string_view kDefaultScene = "lattice-tension";
 
@@ -36,9 +36,9 @@ absl::StatusOr<std::string> Run(CommandArgs args) {
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> out_arg =
       args.TakeOption("--vtu-out", 1);
   if (!out_arg.ok()) return out_arg.status();
-  absl::StatusOr<std::vector<absl::string_view>> scene_arg = args.TakePositionals(1, kUsage);
+  absl::StatusOr<std::vector<absl::string_view>> scene_arg = args.TakePositionals(1, kSimUsage);
   if (!scene_arg.ok()) {
-    scene_arg = args.TakePositionals(0, kUsage);
+    scene_arg = args.TakePositionals(0, kSimUsage);
     if (!scene_arg.ok()) return scene_arg.status();
     scene_arg->push_back(kDefaultScene);
   }
@@ -131,7 +131,7 @@ absl::StatusOr<std::string> RunSimCommand(const std::vector<absl::string_view>& 
     }
     return out;
   }
-  return absl::InvalidArgumentError(absl::StrCat("usage: ", kUsage));
+  return absl::InvalidArgumentError(absl::StrCat("usage: ", kSimUsage));
 }
 
 }  // namespace kerf::cli

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "absl/strings/str_cat.h"
+#include "cli/kerf_command.h"
 #include "google/protobuf/util/json_util.h"
 #include "kerf/v1/cut_report.pb.h"
 #include "support/run_command.h"
@@ -15,11 +16,7 @@ namespace {
 using ::testing::HasSubstr;
 
 using CliResult = kerf::testing::CommandResult;
-
-// Runs kerf with these arguments; the output holds stdout and stderr together.
-CliResult Kerf(const std::string& args) {
-  return kerf::testing::RunCommand(absl::StrCat(KERF_BINARY, " ", args, " 2>&1"));
-}
+using kerf::testing::Kerf;
 
 // kerf cut measures where the cut is against the path (lab::FidelityMeter) on a mesh at rest:
 // the straight path through the paper's lattice is cut where it went; a hand-like path made by

@@ -12,6 +12,7 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "cli/kerf_command.h"
 #include "google/protobuf/util/json_util.h"
 #include "kerf/v1/cut_report.pb.h"
 #include "kerf/v1/live_cut_report.pb.h"
@@ -25,11 +26,7 @@ namespace {
 using ::testing::HasSubstr;
 
 using CliResult = kerf::testing::CommandResult;
-
-// Runs kerf with these arguments; the output holds stdout and stderr together.
-CliResult Kerf(const std::string& args) {
-  return kerf::testing::RunCommand(absl::StrCat(KERF_BINARY, " ", args, " 2>&1"));
-}
+using kerf::testing::Kerf;
 
 // The JSON that `mesh info --json` printed, parsed back with the proto's field names.
 kerf::v1::MeshReport ParseReport(const std::string& json) {

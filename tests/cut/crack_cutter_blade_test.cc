@@ -20,7 +20,7 @@ using mesh::TetMesh;
 
 constexpr BladeLimits kLoose = {.max_length = 10, .max_step = 10, .max_speed = 100};
 
-double Volume(const TetMesh& m, const mesh::TetVertices& v) {
+double RestVolumeOf(const TetMesh& m, const mesh::TetVertices& v) {
   return std::abs(geometry::SignedVolume(m.rest_position(v[0]), m.rest_position(v[1]),
                                          m.rest_position(v[2]), m.rest_position(v[3])));
 }
@@ -38,7 +38,7 @@ TEST(CrackCutterBlade, TheTetsHoldingTheBladeAreThePiecesOfTheTetItOpens) {
   const std::vector<mesh::TetVertices> holding = cutter.TetsHoldingBlade(in);
   EXPECT_EQ(holding.size(), m.tet_count());
   double volume = 0;
-  for (const mesh::TetVertices& t : holding) volume += Volume(m, t);
+  for (const mesh::TetVertices& t : holding) volume += RestVolumeOf(m, t);
   EXPECT_NEAR(volume, 1.0 / 6, 1e-15);
   EXPECT_TRUE(cutter.TetsHoldingBlade({0.1, {3, 3, 3}, {3, 3, 2}}).empty());
 }

@@ -120,7 +120,7 @@ TEST(CrackCutter, AVertexFarFromTheBladeInItsTetsIsNotSnappedOntoTheCrack) {
 }
 
 // Six times the rest volume of `t`, signed.
-double Volume(const TetMesh& m, const mesh::TetVertices& t) {
+double OrientedVolume(const TetMesh& m, const mesh::TetVertices& t) {
   const Eigen::Vector3d a = m.rest_position(t[0]);
   return (m.rest_position(t[1]) - a)
       .cross(m.rest_position(t[2]) - a)
@@ -138,7 +138,7 @@ void AddTetBeside(TetMesh* m, const std::array<int, 3>& face, int away, double h
       m->AddVertex((at(face[0]) + at(face[1]) + at(face[2])) / 3 + side * height * normal);
   mesh::TetVertices t = {mesh::VertexId(face[0]), mesh::VertexId(face[1]), mesh::VertexId(face[2]),
                          apex};
-  if (Volume(*m, t) < 0) std::swap(t[0], t[1]);
+  if (OrientedVolume(*m, t) < 0) std::swap(t[0], t[1]);
   ASSERT_TRUE(m->AddTet(t).ok());
 }
 
@@ -192,7 +192,7 @@ TEST(CrackCutter, ChipsSideBySideHoldByEachOther) {
                                      mesh::TetVertices{mesh::VertexId(1), mesh::VertexId(2),
                                                        mesh::VertexId(3), mesh::VertexId(4)}}) {
     mesh::TetVertices oriented = t;
-    if (Volume(m, oriented) < 0) std::swap(oriented[0], oriented[1]);
+    if (OrientedVolume(m, oriented) < 0) std::swap(oriented[0], oriented[1]);
     ASSERT_TRUE(m.AddTet(oriented).ok());
   }
   AddTetBeside(&m, {0, 1, 3}, 2, 1);

@@ -194,7 +194,7 @@ TEST(CrackSplit, AnyPointsOnATetSplitIt) {
     } else if (split->kind == CrackSplitKind::kMinimal) {
       ++minimal;
     }
-    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    SCOPED_TRACE(::testing::Message() << "trial " << trial);
     ExpectTiles(tet, crack, *split);
     ReleaseWalledInPieces(crack, &*split);
     ExpectTiles(tet, crack, *split);

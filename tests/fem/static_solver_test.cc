@@ -21,7 +21,7 @@ mesh::TetMesh Bar(int n, double length = 5) {
   return *mesh::MakeBoxLattice(spec);
 }
 
-Material Accuracy() {  // ../shared/design/accuracy.md
+Material AccuracyBarMaterial() {  // ../shared/design/accuracy.md
   Material m;
   m.youngs_modulus = 5000;
   m.poisson_ratio = 0.45;
@@ -35,7 +35,7 @@ bool OnBoundary(const Eigen::Vector3d& p) {
 
 TEST(SolveStaticEquilibrium, PatchTestReproducesALinearFieldInside) {
   const mesh::TetMesh m = Bar(2);
-  const TensorMassModel model = *TensorMassModel::Create(m, Accuracy());
+  const TensorMassModel model = *TensorMassModel::Create(m, AccuracyBarMaterial());
   Eigen::Matrix3d a;
   a << 0.01, 0.003, -0.002, 0.001, -0.004, 0.002, 0.0, 0.005, 0.007;
   const Eigen::Vector3d b(0.1, -0.2, 0.05);
@@ -63,7 +63,7 @@ TEST(SolveStaticEquilibrium, CantileverUnderGravityBendsDownAsTheReference) {
   // printed to 4 significant digits). The box lattice is the same six-tet split, so the
   // figure is reproduced; every node is compared with ccx in kerf_static_calculix_test.
   const mesh::TetMesh m = Bar(2);
-  const TensorMassModel model = *TensorMassModel::Create(m, Accuracy());
+  const TensorMassModel model = *TensorMassModel::Create(m, AccuracyBarMaterial());
   BoundaryConditions bc;
   bc.gravity = {0, 0, -1};
   std::vector<VertexId> clamped;
@@ -78,7 +78,7 @@ TEST(SolveStaticEquilibrium, CantileverUnderGravityBendsDownAsTheReference) {
 
 TEST(SolveStaticEquilibrium, RefusesAFreeBodyAndBadConditions) {
   const mesh::TetMesh m = Bar(1);
-  const TensorMassModel model = *TensorMassModel::Create(m, Accuracy());
+  const TensorMassModel model = *TensorMassModel::Create(m, AccuracyBarMaterial());
   BoundaryConditions bc;
   bc.gravity = {0, 0, -1};
   EXPECT_EQ(StatusMessage(SolveStaticEquilibrium(model, bc)),

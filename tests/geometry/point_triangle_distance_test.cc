@@ -7,28 +7,29 @@
 namespace kerf::geometry {
 namespace {
 
-const Eigen::Vector3d kA(0, 0, 0), kB(4, 0, 0), kC(0, 4, 0);
+const Eigen::Vector3d kCornerA(0, 0, 0), kCornerB(4, 0, 0), kCornerC(0, 4, 0);
 
 TEST(DistanceToTriangle, AboveTheInsideIsTheHeight) {
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({1, 1, 3}, kA, kB, kC), 3);
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({1, 1, 0}, kA, kB, kC), 0);  // on it
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({1, 1, 3}, kCornerA, kCornerB, kCornerC), 3);
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({1, 1, 0}, kCornerA, kCornerB, kCornerC), 0);  // on it
 }
 
 TEST(DistanceToTriangle, BesideAnEdgeIsToTheEdge) {
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({2, -3, 4}, kA, kB, kC), 5);                // beside ab
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({-3, 2, 4}, kA, kB, kC), 5);                // beside ac
-  EXPECT_NEAR(DistanceToTriangle({3, 3, 0}, kA, kB, kC), std::sqrt(2.0), 1e-15);  // beside bc
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({2, -3, 4}, kCornerA, kCornerB, kCornerC), 5);  // beside ab
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({-3, 2, 4}, kCornerA, kCornerB, kCornerC), 5);  // beside ac
+  EXPECT_NEAR(DistanceToTriangle({3, 3, 0}, kCornerA, kCornerB, kCornerC), std::sqrt(2.0),
+              1e-15);  // beside bc
 }
 
 TEST(DistanceToTriangle, PastACornerIsToTheCorner) {
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({-3, -4, 0}, kA, kB, kC), 5);
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({7, -4, 0}, kA, kB, kC), 5);
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({-4, 7, 0}, kA, kB, kC), 5);
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({-3, -4, 0}, kCornerA, kCornerB, kCornerC), 5);
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({7, -4, 0}, kCornerA, kCornerB, kCornerC), 5);
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({-4, 7, 0}, kCornerA, kCornerB, kCornerC), 5);
 }
 
 TEST(DistanceToTriangle, ADegenerateTriangleIsItsSegment) {
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({2, 3, 4}, kA, kB, {2, 0, 0}), 5);
-  EXPECT_DOUBLE_EQ(DistanceToTriangle({0, 3, 4}, kA, kA, kA), 5);
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({2, 3, 4}, kCornerA, kCornerB, {2, 0, 0}), 5);
+  EXPECT_DOUBLE_EQ(DistanceToTriangle({0, 3, 4}, kCornerA, kCornerA, kCornerA), 5);
 }
 
 TEST(ClosestPointOnTriangle, NoPointOfTheTriangleIsCloser) {

@@ -7,7 +7,7 @@
 namespace kerf::service {
 namespace {
 
-SerializedFrame Frame(std::uint64_t sequence, bool topology) {
+SerializedFrame MakeFrame(std::uint64_t sequence, bool topology) {
   return {std::make_shared<const std::string>("x"), sequence, topology, false};
 }
 
@@ -19,7 +19,7 @@ struct Recorder {
 TEST(FrameQueue, StartsWithAKeyframeAndIgnoresDeltasUntilThen) {
   Recorder r;
   EXPECT_TRUE(r.queue.NeedsKeyframe());
-  r.queue.Offer(Frame(1, true));
+  r.queue.Offer(MakeFrame(1, true));
   EXPECT_TRUE(r.written.empty());
   r.queue.OfferKeyframe({std::make_shared<const std::string>("k"), 1, true, true});
   EXPECT_EQ(r.written, std::vector<std::uint64_t>{1});
@@ -28,11 +28,11 @@ TEST(FrameQueue, StartsWithAKeyframeAndIgnoresDeltasUntilThen) {
 
 TEST(FrameQueue, WritesOneAtATimeAndPositionsAreLatestWins) {
   Recorder r;
-  r.queue.OfferKeyframe(Frame(0, true));
-  r.queue.Offer(Frame(1, false));  // waits: the keyframe is in flight
-  r.queue.Offer(Frame(2, false));  // replaces 1
-  r.queue.Offer(Frame(3, true));   // replaces 2 (which changed nothing)
-  r.queue.Offer(Frame(4, false));  // waits behind 3
+  r.queue.OfferKeyframe(MakeFrame(0, true));
+  r.queue.Offer(MakeFrame(1, false));  // waits: the keyframe is in flight
+  r.queue.Offer(MakeFrame(2, false));  // replaces 1
+  r.queue.Offer(MakeFrame(3, true));   // replaces 2 (which changed nothing)
+  r.queue.Offer(MakeFrame(4, false));  // waits behind 3
   EXPECT_EQ(r.written, std::vector<std::uint64_t>{0});
   r.queue.WriteDone();
   r.queue.WriteDone();
@@ -43,27 +43,27 @@ TEST(FrameQueue, WritesOneAtATimeAndPositionsAreLatestWins) {
 
 TEST(FrameQueue, NeverDropsTopologyButResyncsASubscriberThatFallsBehind) {
   Recorder r;
-  r.queue.OfferKeyframe(Frame(0, true));
-  for (std::uint64_t s = 1; s <= 3; ++s) r.queue.Offer(Frame(s, true));  // three wait
+  r.queue.OfferKeyframe(MakeFrame(0, true));
+  for (std::uint64_t s = 1; s <= 3; ++s) r.queue.Offer(MakeFrame(s, true));  // three wait
   EXPECT_FALSE(r.queue.NeedsKeyframe());
-  r.queue.Offer(Frame(4, true));  // a fourth would exceed the capacity: all dropped
+  r.queue.Offer(MakeFrame(4, true));  // a fourth would exceed the capacity: all dropped
   EXPECT_TRUE(r.queue.NeedsKeyframe());
   EXPECT_EQ(r.queue.resyncs(), 1u);
-  r.queue.Offer(Frame(5, true));  // ignored until the keyframe
+  r.queue.Offer(MakeFrame(5, true));  // ignored until the keyframe
   r.queue.WriteDone();
   EXPECT_EQ(r.written, std::vector<std::uint64_t>{0});
-  r.queue.OfferKeyframe(Frame(5, true));
+  r.queue.OfferKeyframe(MakeFrame(5, true));
   r.queue.WriteDone();
   EXPECT_EQ(r.written, (std::vector<std::uint64_t>{0, 5}));
 }
 
 TEST(FrameQueue, WritesNothingOnceClosed) {
   Recorder r;
-  r.queue.OfferKeyframe(Frame(0, true));
-  r.queue.Offer(Frame(1, true));
+  r.queue.OfferKeyframe(MakeFrame(0, true));
+  r.queue.Offer(MakeFrame(1, true));
   r.queue.Close();
   r.queue.WriteDone();
-  r.queue.Offer(Frame(2, true));
+  r.queue.Offer(MakeFrame(2, true));
   EXPECT_EQ(r.written, std::vector<std::uint64_t>{0});
   EXPECT_FALSE(r.queue.NeedsKeyframe());
 }

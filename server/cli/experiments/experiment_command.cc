@@ -21,7 +21,7 @@
 namespace kerf::cli {
 namespace {
 
-constexpr absl::string_view kUsage =
+constexpr absl::string_view kExperimentUsage =
     "kerf experiment lattice-cut|progressive-cases|live-cut [--json]\n"
     "       kerf experiment tradeoff [--resolutions N,N,...] [--reference-resolution N] "
     "[--seconds S] [--json]\n"
@@ -225,7 +225,7 @@ absl::StatusOr<std::string> Tradeoff(CommandArgs* rest, bool json) {
     }
     options.settle_seconds = *value;
   }
-  if (absl::Status s = rest->TakePositionals(0, kUsage).status(); !s.ok()) return s;
+  if (absl::Status s = rest->TakePositionals(0, kExperimentUsage).status(); !s.ok()) return s;
   absl::StatusOr<kerf::v1::TradeoffExperiment> experiment = RunTradeoff(options);
   if (!experiment.ok()) return experiment.status();
   return json ? FormatProtoJson(*experiment) : FormatTradeoff(*experiment);
@@ -267,7 +267,7 @@ absl::StatusOr<std::string> Stability(CommandArgs* rest, bool json) {
     }
     options.live_cut.slow_down = *value;
   }
-  if (absl::Status s = rest->TakePositionals(0, kUsage).status(); !s.ok()) return s;
+  if (absl::Status s = rest->TakePositionals(0, kExperimentUsage).status(); !s.ok()) return s;
   absl::StatusOr<kerf::v1::StabilityExperiment> experiment = RunStability(options);
   if (!experiment.ok()) return experiment.status();
   return json ? FormatProtoJson(*experiment) : FormatStability(*experiment);
@@ -276,13 +276,13 @@ absl::StatusOr<std::string> Stability(CommandArgs* rest, bool json) {
 }  // namespace
 
 absl::StatusOr<std::string> RunExperimentCommand(const std::vector<absl::string_view>& args) {
-  if (args.empty()) return absl::InvalidArgumentError(absl::StrCat("usage: ", kUsage));
+  if (args.empty()) return absl::InvalidArgumentError(absl::StrCat("usage: ", kExperimentUsage));
   CommandArgs rest(std::vector<absl::string_view>(args.begin() + 1, args.end()));
   const bool json = rest.TakeFlag("--json");
   if (args[0] == "tradeoff") return Tradeoff(&rest, json);
   if (args[0] == "stability") return Stability(&rest, json);
   if (args[0] == "hand-cuts") return RunHandCutExperiment(&rest, json);
-  if (absl::Status s = rest.TakePositionals(0, kUsage).status(); !s.ok()) return s;
+  if (absl::Status s = rest.TakePositionals(0, kExperimentUsage).status(); !s.ok()) return s;
   if (args[0] == "lattice-cut") return LatticeCut(json);
   if (args[0] == "progressive-cases") return ProgressiveCases(json);
   if (args[0] == "live-cut") return LiveCut(json);

@@ -15,7 +15,7 @@
 namespace kerf::cli {
 namespace {
 
-constexpr absl::string_view kUsage =
+constexpr absl::string_view kHandCutsUsage =
     "kerf experiment hand-cuts [--meshes FILE,...] [--seeds N] [--check every|end] [--json]";
 
 struct Cutting {
@@ -78,7 +78,7 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
     seeds = *n;
   }
   absl::StatusOr<std::optional<absl::string_view>> when =
-      args->TakeChoice("--check", {"every", "end"}, kUsage);
+      args->TakeChoice("--check", {"every", "end"}, kHandCutsUsage);
   if (!when.ok()) return when.status();
   if (*when == "every") check = CheckWhen::kEveryPose;
   arg = args->TakeOption("--meshes", 1);
@@ -86,7 +86,7 @@ absl::StatusOr<std::string> RunHandCutExperiment(CommandArgs* args, bool json) {
   if (arg->has_value()) {
     for (absl::string_view m : absl::StrSplit((**arg)[0], ',')) meshes.emplace_back(m);
   }
-  if (absl::Status s = args->TakePositionals(0, kUsage).status(); !s.ok()) return s;
+  if (absl::Status s = args->TakePositionals(0, kHandCutsUsage).status(); !s.ok()) return s;
   std::vector<std::pair<std::string, mesh::TetMesh>> tissues;
   if (meshes.empty()) {
     tissues.emplace_back(

@@ -16,14 +16,15 @@ constexpr Integration kIntegrations[] = {
     {kerf::v1::Integration::SYMPLECTIC_EULER_SUBSTEPPED, 1e-3, "SYMPLECTIC_EULER_SUBSTEPPED, 1 ms"},
     {kerf::v1::Integration::IMPLICIT_EULER, 1e-3, "IMPLICIT_EULER, 1 ms"}};
 
-struct Cutting {
+struct StabilityCutting {
   kerf::v1::Cutting::Mode mode;
   double snap_fraction;
 };
-constexpr Cutting kCuttings[] = {{kerf::v1::Cutting::PROGRESSIVE, 0},
-                                 {kerf::v1::Cutting::PROGRESSIVE, kStabilitySnapFraction},
-                                 {kerf::v1::Cutting::DEFERRED, 0},
-                                 {kerf::v1::Cutting::DEFERRED, kStabilitySnapFraction}};
+constexpr StabilityCutting kStabilityCuttings[] = {
+    {kerf::v1::Cutting::PROGRESSIVE, 0},
+    {kerf::v1::Cutting::PROGRESSIVE, kStabilitySnapFraction},
+    {kerf::v1::Cutting::DEFERRED, 0},
+    {kerf::v1::Cutting::DEFERRED, kStabilitySnapFraction}};
 
 }  // namespace
 
@@ -40,7 +41,7 @@ absl::StatusOr<kerf::v1::StabilityExperiment> RunStability(const StabilityOption
   for (const lab::StandardCut& cut : lab::StandardCuts(scenes)) {
     absl::StatusOr<std::vector<cut::BladePose>> path = lab::StandardPath(cut.path);
     if (!path.ok()) return path.status();
-    for (const Cutting& cutting : kCuttings) {
+    for (const StabilityCutting& cutting : kStabilityCuttings) {
       for (const Integration& integration : kIntegrations) {
         for (const fem::ElasticLaw law :
              {fem::ElasticLaw::kLinear, fem::ElasticLaw::kCorotational}) {

@@ -14,8 +14,6 @@ using internal::TetMeshDataBuilder;
 using internal::TextScanner;
 
 constexpr int kTet4 = 4;
-constexpr std::int64_t kMaxCount = std::int64_t{1} << 40;
-
 // Element types of dimension 0-2 (points, lines, triangles, quads, and their higher-order
 // kinds), which a volume mesh may carry for boundaries and are skipped.
 bool IsLowerDimensionType(std::int64_t type) {
@@ -119,13 +117,13 @@ absl::StatusOr<TetMeshData> ParseVersion1(TextScanner& s) {
   bool have_nodes = false, have_elements = false;
   for (absl::string_view section = s.NextToken(); !section.empty(); section = s.NextToken()) {
     if (section == "$NOD") {
-      absl::StatusOr<std::int64_t> count = s.NextIntIn("node count", 0, kMaxCount);
+      absl::StatusOr<std::int64_t> count = s.NextIntIn("node count", 0, internal::kMaxItemCount);
       if (!count.ok()) return count.status();
       if (auto st = ReadNodeLines(s, *count, builder); !st.ok()) return st;
       if (auto st = s.Expect("$ENDNOD"); !st.ok()) return st;
       have_nodes = true;
     } else if (section == "$ELM") {
-      absl::StatusOr<std::int64_t> count = s.NextIntIn("element count", 0, kMaxCount);
+      absl::StatusOr<std::int64_t> count = s.NextIntIn("element count", 0, internal::kMaxItemCount);
       if (!count.ok()) return count.status();
       for (std::int64_t i = 0; i < *count; ++i) {
         // elm-number elm-type reg-phys reg-elem number-of-nodes node-number-list
@@ -146,7 +144,7 @@ absl::StatusOr<TetMeshData> ParseVersion1(TextScanner& s) {
 }
 
 absl::Status ReadVersion2Elements(TextScanner& s, TetMeshDataBuilder& builder) {
-  absl::StatusOr<std::int64_t> count = s.NextIntIn("element count", 0, kMaxCount);
+  absl::StatusOr<std::int64_t> count = s.NextIntIn("element count", 0, internal::kMaxItemCount);
   if (!count.ok()) return count.status();
   for (std::int64_t i = 0; i < *count; ++i) {
     // elm-number elm-type number-of-tags <tags> node-number-list
@@ -167,9 +165,9 @@ absl::Status ReadVersion2Elements(TextScanner& s, TetMeshDataBuilder& builder) {
 absl::StatusOr<std::int64_t> ReadVersion4SectionHeader(TextScanner& s, bool v41,
                                                        absl::string_view item) {
   absl::StatusOr<std::int64_t> blocks =
-      s.NextIntIn(absl::StrCat(item, " block count"), 0, kMaxCount);
+      s.NextIntIn(absl::StrCat(item, " block count"), 0, internal::kMaxItemCount);
   if (!blocks.ok()) return blocks.status();
-  if (auto n = s.NextIntIn(absl::StrCat(item, " count"), 0, kMaxCount); !n.ok()) {
+  if (auto n = s.NextIntIn(absl::StrCat(item, " count"), 0, internal::kMaxItemCount); !n.ok()) {
     return n.status();
   }
   if (v41) {
@@ -195,7 +193,7 @@ absl::Status ReadVersion4Nodes(TextScanner& s, bool v41, TetMeshDataBuilder& bui
     if (auto st = SkipEntityDimensionAndTag(s); !st.ok()) return st;
     absl::StatusOr<std::int64_t> parametric = s.NextIntIn("parametric flag", 0, 0);
     if (!parametric.ok()) return parametric.status();
-    absl::StatusOr<std::int64_t> count = s.NextIntIn("nodes in block", 0, kMaxCount);
+    absl::StatusOr<std::int64_t> count = s.NextIntIn("nodes in block", 0, internal::kMaxItemCount);
     if (!count.ok()) return count.status();
     if (!v41) {
       if (auto st = ReadNodeLines(s, *count, builder); !st.ok()) return st;
@@ -227,7 +225,8 @@ absl::Status ReadVersion4Elements(TextScanner& s, bool v41, TetMeshDataBuilder& 
     absl::StatusOr<std::int64_t> type = s.NextInt("element type");
     if (!type.ok()) return type.status();
     if (*type != kTet4 && !IsLowerDimensionType(*type)) return UnsupportedType(s, *type);
-    absl::StatusOr<std::int64_t> count = s.NextIntIn("elements in block", 0, kMaxCount);
+    absl::StatusOr<std::int64_t> count =
+        s.NextIntIn("elements in block", 0, internal::kMaxItemCount);
     if (!count.ok()) return count.status();
     s.NextLine();  // end of the block header
     for (std::int64_t i = 0; i < *count; ++i) {
@@ -259,7 +258,7 @@ absl::StatusOr<TetMeshData> ParseVersion2Or4(TextScanner& s) {
     absl::Status st;
     if (section == "$Nodes") {
       if (v2) {
-        absl::StatusOr<std::int64_t> count = s.NextIntIn("node count", 0, kMaxCount);
+        absl::StatusOr<std::int64_t> count = s.NextIntIn("node count", 0, internal::kMaxItemCount);
         if (!count.ok()) return count.status();
         st = ReadNodeLines(s, *count, builder);
         if (st.ok()) st = s.Expect("$EndNodes");

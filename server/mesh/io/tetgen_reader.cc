@@ -9,11 +9,9 @@ namespace {
 
 using internal::TextScanner;
 
-constexpr std::int64_t kMaxCount = std::int64_t{1} << 40;
-
 absl::Status ReadNodes(TextScanner& s, internal::TetMeshDataBuilder& builder) {
   // <# of points> <dimension (3)> <# of attributes> <boundary markers (0 or 1)>
-  absl::StatusOr<std::int64_t> count = s.NextIntIn("point count", 0, kMaxCount);
+  absl::StatusOr<std::int64_t> count = s.NextIntIn("point count", 0, internal::kMaxItemCount);
   if (!count.ok()) return count.status();
   absl::StatusOr<std::int64_t> dimension = s.NextIntIn("dimension", 3, 3);
   if (!dimension.ok()) return dimension.status();
@@ -42,7 +40,7 @@ absl::Status ReadNodes(TextScanner& s, internal::TetMeshDataBuilder& builder) {
 
 absl::Status ReadTets(TextScanner& s, internal::TetMeshDataBuilder& builder) {
   // <# of tetrahedra> <nodes per tetrahedron> <# of attributes>
-  absl::StatusOr<std::int64_t> count = s.NextIntIn("tetrahedron count", 0, kMaxCount);
+  absl::StatusOr<std::int64_t> count = s.NextIntIn("tetrahedron count", 0, internal::kMaxItemCount);
   if (!count.ok()) return count.status();
   absl::StatusOr<std::int64_t> corners = s.NextIntIn("nodes per tetrahedron", 4, 10);
   if (!corners.ok()) return corners.status();

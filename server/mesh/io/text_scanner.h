@@ -13,6 +13,11 @@
 
 namespace kerf::mesh::internal {
 
+// The most items (points, cells, blocks) a mesh file may declare: far above any mesh kerf can
+// hold, and low enough that a count read from a damaged file cannot overflow a size computed
+// from it.
+inline constexpr std::int64_t kMaxItemCount = std::int64_t{1} << 40;
+
 class TextScanner {
  public:
   // `comment` starts a comment that runs to the end of the line ('\0': no comments).

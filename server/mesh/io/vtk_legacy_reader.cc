@@ -14,8 +14,6 @@ namespace {
 
 using internal::TextScanner;
 
-constexpr std::int64_t kMaxCount = std::int64_t{1} << 40;
-
 absl::StatusOr<std::vector<std::int64_t>> ReadInts(TextScanner& s, std::int64_t count,
                                                    absl::string_view what) {
   std::vector<std::int64_t> values;
@@ -106,7 +104,7 @@ absl::StatusOr<TetMeshData> ParseVtkLegacy(absl::string_view text, absl::string_
   while (!(have_points && have_cells && have_types)) {
     const absl::string_view keyword = s.NextToken();
     if (keyword == "POINTS") {
-      absl::StatusOr<std::int64_t> n = s.NextIntIn("point count", 0, kMaxCount);
+      absl::StatusOr<std::int64_t> n = s.NextIntIn("point count", 0, internal::kMaxItemCount);
       if (!n.ok()) return n.status();
       s.NextToken();  // float or double
       data.points.reserve(internal::ReservableCount(*n, text.size()));
@@ -119,9 +117,9 @@ absl::StatusOr<TetMeshData> ParseVtkLegacy(absl::string_view text, absl::string_
       have_points = true;
     } else if (keyword == "CELLS") {
       cells_offset = s.offset();
-      absl::StatusOr<std::int64_t> a = s.NextIntIn("cell count", 0, kMaxCount);
+      absl::StatusOr<std::int64_t> a = s.NextIntIn("cell count", 0, internal::kMaxItemCount);
       if (!a.ok()) return a.status();
-      absl::StatusOr<std::int64_t> b = s.NextIntIn("cell list size", 0, kMaxCount);
+      absl::StatusOr<std::int64_t> b = s.NextIntIn("cell list size", 0, internal::kMaxItemCount);
       if (!b.ok()) return b.status();
       absl::StatusOr<Cells> read =
           offsets_layout ? ReadOffsetCells(s, *a, *b) : ReadClassicCells(s, *a, *b);
@@ -129,7 +127,7 @@ absl::StatusOr<TetMeshData> ParseVtkLegacy(absl::string_view text, absl::string_
       cells = *std::move(read);
       have_cells = true;
     } else if (keyword == "CELL_TYPES") {
-      absl::StatusOr<std::int64_t> n = s.NextIntIn("cell type count", 0, kMaxCount);
+      absl::StatusOr<std::int64_t> n = s.NextIntIn("cell type count", 0, internal::kMaxItemCount);
       if (!n.ok()) return n.status();
       absl::StatusOr<std::vector<std::int64_t>> read = ReadInts(s, *n, "cell type");
       if (!read.ok()) return read.status();

@@ -13,7 +13,7 @@ bool IsNameChar(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
          c == '-' || c == '.' || c == ':';
 }
-bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+bool IsXmlSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
 class XmlParser {
  public:
@@ -35,7 +35,7 @@ class XmlParser {
   absl::Status Error(absl::string_view message) const { return errors_.ErrorAt(pos_, message); }
 
   void SkipSpace() {
-    while (pos_ < text_.size() && IsSpace(text_[pos_])) ++pos_;
+    while (pos_ < text_.size() && IsXmlSpace(text_[pos_])) ++pos_;
   }
 
   // Skips "<?...?>", "<!--...-->" and "<!DOCTYPE ...>" and white space.

@@ -105,7 +105,7 @@ $Elements
 $EndElements
 )";
 
-void ExpectTwoTets(const absl::StatusOr<TetMeshData>& data) {
+void ExpectTheTwoMshTets(const absl::StatusOr<TetMeshData>& data) {
   ASSERT_TRUE(data.ok()) << data.status();
   EXPECT_THAT(data->point_ids, ElementsAre(1, 2, 3, 4, 9));
   EXPECT_EQ(data->points[4], Eigen::Vector3d(1, 1, 1));
@@ -114,10 +114,10 @@ void ExpectTwoTets(const absl::StatusOr<TetMeshData>& data) {
   EXPECT_THAT(data->tets[1], ElementsAre(1, 2, 3, 4));
 }
 
-TEST(ParseGmshMsh, Version1) { ExpectTwoTets(ParseGmshMsh(kVersion1, "v1.msh")); }
-TEST(ParseGmshMsh, Version2) { ExpectTwoTets(ParseGmshMsh(kVersion2, "v2.msh")); }
-TEST(ParseGmshMsh, Version41) { ExpectTwoTets(ParseGmshMsh(kVersion41, "v41.msh")); }
-TEST(ParseGmshMsh, Version40) { ExpectTwoTets(ParseGmshMsh(kVersion40, "v40.msh")); }
+TEST(ParseGmshMsh, Version1) { ExpectTheTwoMshTets(ParseGmshMsh(kVersion1, "v1.msh")); }
+TEST(ParseGmshMsh, Version2) { ExpectTheTwoMshTets(ParseGmshMsh(kVersion2, "v2.msh")); }
+TEST(ParseGmshMsh, Version41) { ExpectTheTwoMshTets(ParseGmshMsh(kVersion41, "v41.msh")); }
+TEST(ParseGmshMsh, Version40) { ExpectTheTwoMshTets(ParseGmshMsh(kVersion40, "v40.msh")); }
 
 struct BadCase {
   const char* text;

@@ -47,7 +47,7 @@ CELL_TYPES 2
 10 10
 )";
 
-void ExpectTwoTets(const absl::StatusOr<TetMeshData>& data) {
+void ExpectTheTwoVtkTets(const absl::StatusOr<TetMeshData>& data) {
   ASSERT_TRUE(data.ok()) << data.status();
   ASSERT_EQ(data->points.size(), 5u);
   EXPECT_EQ(data->points[3], Eigen::Vector3d(0, 0, 1));
@@ -55,8 +55,10 @@ void ExpectTwoTets(const absl::StatusOr<TetMeshData>& data) {
   EXPECT_THAT(data->tets[1], ElementsAre(1, 2, 3, 4));
 }
 
-TEST(ParseVtkLegacy, ClassicCells) { ExpectTwoTets(ParseVtkLegacy(kClassic, "a.vtk")); }
-TEST(ParseVtkLegacy, Version51OffsetCells) { ExpectTwoTets(ParseVtkLegacy(kOffsets, "b.vtk")); }
+TEST(ParseVtkLegacy, ClassicCells) { ExpectTheTwoVtkTets(ParseVtkLegacy(kClassic, "a.vtk")); }
+TEST(ParseVtkLegacy, Version51OffsetCells) {
+  ExpectTheTwoVtkTets(ParseVtkLegacy(kOffsets, "b.vtk"));
+}
 
 TEST(ParseVtkLegacy, Errors) {
   const std::string head = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n";

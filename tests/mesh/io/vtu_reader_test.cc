@@ -46,7 +46,7 @@ std::string Binary(const std::vector<T>& values, bool header64, bool separate_he
                          : internal::Base64Encode(header + data);
 }
 
-void ExpectTwoTets(const absl::StatusOr<TetMeshData>& data) {
+void ExpectTheTwoVtuTets(const absl::StatusOr<TetMeshData>& data) {
   ASSERT_TRUE(data.ok()) << data.status();
   ASSERT_EQ(data->points.size(), 5u);
   EXPECT_EQ(data->points[4], Eigen::Vector3d(1, 1, 1));
@@ -56,7 +56,7 @@ void ExpectTwoTets(const absl::StatusOr<TetMeshData>& data) {
 }
 
 TEST(ParseVtu, Ascii) {
-  ExpectTwoTets(
+  ExpectTheTwoVtuTets(
       ParseVtu(Vtu("", kAsciiPoints, "0 1 2 3 1 2 3 4 0 1 2", "4 8 11", "10 10 5"), "a.vtu"));
 }
 
@@ -71,7 +71,7 @@ TEST(ParseVtu, BinaryWithEitherHeaderSizeAndEitherHeaderEncoding) {
           Vtu(header64 ? "header_type=\"UInt64\"" : "", Binary(points, header64, separate),
               Binary(connectivity, header64, separate), Binary(offsets, header64, separate),
               Binary(types, header64, separate), "binary");
-      ExpectTwoTets(ParseVtu(text, "b.vtu"));
+      ExpectTheTwoVtuTets(ParseVtu(text, "b.vtu"));
     }
   }
 }
