@@ -15,7 +15,8 @@
 // tissue's surface where the crack, snapped to it, would lie on the surface and what the blade
 // cut under it be lost (SnapWouldLayCrackOnSurface: the blade grazing the surface, its tip just
 // under it, or sweeping along it), and a face's crossing beside an edge of the surface stays a
-// point of the face, moved off the edge to the snap share. What is cut stays cut: a crossing
+// point of the face, moved off its edges (face_point_weights.h; near two of them, their corner is
+// taken if it may snap). What is cut stays cut: a crossing
 // within kSnapReach of the tissue's edge there of a crack face made before (of a tet the blade
 // does not hold open) adds no point (OnTheCrackAlready), so a blade going back over its cut, or
 // coming in again where it came out, does not cut the pieces beside the crack again. A chip (a
@@ -249,7 +250,7 @@ class CrackCutter {
       const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins, double reach,
       absl::FunctionRef<bool(mesh::TetId, const FaceKey&, const CrackFace&)> counts) const;
   // Records crossings as points (snapping them); adds the units they touch. `off_edges`: a face's
-  // crossing near an edge stays a point of the face, moved off the edge to the snap share (the
+  // crossing near an edge stays a point of the face, moved off its edges (FacePointOffEdges; the
   // blade came near the edge without crossing it: taken at the edge, the crack would reach
   // every tet around it).
   void RecordCrossings(const Crossings& found, std::vector<mesh::TetId>* touched,

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "cut/crack_cutter.h"
+#include "cut/face_point_weights.h"
 #include "geometry/point_triangle_distance.h"
 #include "geometry/segment_distance.h"
 #include "geometry/tet_measures.h"
@@ -42,7 +43,7 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     }
     const int i = (smallest + 1) % 3, j = (smallest + 2) % 3;
     // Beside the tissue's surface, off an edge of it (not on it, to rounding), the crossing stays
-    // a point of the face, moved off the edge to the snap share: taken at the edge, the crack
+    // a point of the face, moved off its edges (face_point_weights.h): taken at the edge, the crack
     // would end on the surface, and the blade's cut under it would be lost.
     const bool beside_surface = b[smallest] > kMinSnapFraction && !surface_.HasFace(c.face) &&
                                 surface_.HasEdge(c.face[i], c.face[j]);
@@ -54,12 +55,13 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
       if (Index(high) < Index(low)) std::swap(low, high), fraction = 1 - fraction;
       RecordEdgeCrossing(low, high, fraction, EdgeCrossingFrom::kSweep, touched);
     } else {
-      Eigen::Vector3d w = b;
-      if (w[smallest] < share) {
-        w *= (1 - share) / (1 - w[smallest]);
-        w[smallest] = share;
+      // Within the share of two edges the crossing is at their corner: taken there when the
+      // corner may snap, else kept off both edges (a point beside them fans flat pieces).
+      if ((b.array() < share).count() == 2 && MaySnap(c.face[largest])) {
+        Snap(c.face[largest], touched);
+        continue;
       }
-      face_points_[c.face] = {w};
+      face_points_[c.face] = {FacePointOffEdges(b, share)};
       const std::vector<TetId> units = UnitsAround({c.face[0], c.face[1], c.face[2]});
       touched->insert(touched->end(), units.begin(), units.end());
     }

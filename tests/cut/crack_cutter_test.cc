@@ -563,6 +563,21 @@ TEST_P(BothModes, HandPathsThroughTheLiversStayValidAndCoverMostOfTheSweep) {
   }
 }
 
+// A blade in the plane of `liver.msh`'s faces whose crossing of a face (kept as the face's
+// point, the edge beside it on the tissue's surface) came within the snap share of two of its
+// edges, near their corner (face-plane seed 26): moved off one edge only, the point fanned a
+// piece of 0.79 degrees over the other; taken at the corner now, or moved off both edges.
+TEST_P(BothModes, AFaceCrossingBesideACornerFansNoSliver) {
+  const std::string path = kerf::testing::SharedMeshPath("liver.msh");
+  if (path.empty()) GTEST_SKIP() << "no ../shared/meshes";
+  const TetMesh liver = *mesh::ReadMeshFile(path);
+  const PathResult r = CutChecked(liver, GetParam(), lab::PathFamily::kInFacePlane, 26);
+  if (HasFatalFailure()) return;
+  EXPECT_GE(r.min_new_dihedral, 1.0);
+  EXPECT_EQ(r.fidelity.coverage_below_surface, 1.0);
+  EXPECT_EQ(r.fidelity.overcut_faces, 0u);
+}
+
 // A hand going back over its cut beside the crack, with coarser snapping: the cones' apexes of
 // the first pass lie on the crack, near the blade again. Snapped onto it, they split the pieces
 // around them as cones whose apexes the next pose snapped in turn: this path went from 1,493 to
