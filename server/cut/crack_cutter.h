@@ -16,10 +16,10 @@
 // cut under it be lost (SnapWouldLayCrackOnSurface: the blade grazing the surface, its tip just
 // under it, or sweeping along it), and a face's crossing beside an edge of the surface stays a
 // point of the face, moved off its edges (face_point_weights.h; near two of them, their corner is
-// taken if it may snap). What is cut stays cut: a crossing
-// within kSnapReach of the tissue's edge there of a crack face made before (of a tet the blade
-// does not hold open) adds no point (OnTheCrackAlready), so a blade going back over its cut, or
-// coming in again where it came out, does not cut the pieces beside the crack again. A chip (a
+// taken if it may snap). What is cut stays cut: a crossing within kSnapReach of the tissue's edge
+// there of a crack face made before (of a tet the blade does not hold open) adds no point
+// (OnTheCrackAlready), so a blade going back over its cut, or coming in again where it came out,
+// does not cut the pieces beside the crack again. A chip (a
 // few tets joined through faces off the crack, every corner of them on the crack: snapped onto
 // it, or points the cut made) would be cut free by the face rule though the blade never cut
 // around it; it holds by its largest crack face beside a tet with a corner off the crack, kept

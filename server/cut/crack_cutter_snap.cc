@@ -37,10 +37,6 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     b.maxCoeff(&largest);
     b.minCoeff(&smallest);
     const double share = SnapShare(c.face);
-    if (b[largest] > 1 - share && MaySnap(c.face[largest])) {
-      Snap(c.face[largest], touched);
-      continue;
-    }
     const int i = (smallest + 1) % 3, j = (smallest + 2) % 3;
     // Beside the tissue's surface, off an edge of it (not on it, to rounding), the crossing stays
     // a point of the face, moved off its edges (face_point_weights.h): taken at the edge, the crack
@@ -48,6 +44,14 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     const bool beside_surface = b[smallest] > kMinSnapFraction && !surface_.HasFace(c.face) &&
                                 surface_.HasEdge(c.face[i], c.face[j]);
     const bool stays = off_edges || beside_surface;
+    // The corner's, where it may snap: within the share of the corner, or, for a crossing that
+    // stays a point of the face, within the share of its two edges (a point beside both fans
+    // flat pieces).
+    const bool near_corner = b[largest] > 1 - share || (stays && (b.array() < share).count() == 2);
+    if (near_corner && MaySnap(c.face[largest])) {
+      Snap(c.face[largest], touched);
+      continue;
+    }
     if (b[smallest] < share && !stays) {
       // Beside the edge opposite the smallest weight: that edge's crossing.
       VertexId low = c.face[i], high = c.face[j];
@@ -55,12 +59,6 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
       if (Index(high) < Index(low)) std::swap(low, high), fraction = 1 - fraction;
       RecordEdgeCrossing(low, high, fraction, EdgeCrossingFrom::kSweep, touched);
     } else {
-      // Within the share of two edges the crossing is at their corner: taken there when the
-      // corner may snap, else kept off both edges (a point beside them fans flat pieces).
-      if ((b.array() < share).count() == 2 && MaySnap(c.face[largest])) {
-        Snap(c.face[largest], touched);
-        continue;
-      }
       face_points_[c.face] = {FacePointOffEdges(b, share)};
       const std::vector<TetId> units = UnitsAround({c.face[0], c.face[1], c.face[2]});
       touched->insert(touched->end(), units.begin(), units.end());
