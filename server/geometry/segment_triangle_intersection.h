@@ -15,8 +15,9 @@ struct SegmentTriangleCrossing {
 
 // The crossing of segment pq with triangle abc, boundaries included (a segment through a
 // triangle's edge or corner, or ending on the triangle, crosses it). nullopt when the segment
-// misses the triangle, lies in its plane, or either is degenerate: a segment in the plane of
-// a face is a degenerate blade that cutting handles apart.
+// misses the triangle, lies in its plane (both ends within a billionth of its length of it,
+// where the sides' signs are rounding), or either is degenerate: a segment in the plane of a face
+// is a degenerate blade that cutting handles apart.
 std::optional<SegmentTriangleCrossing> IntersectSegmentTriangle(const Eigen::Vector3d& p,
                                                                 const Eigen::Vector3d& q,
                                                                 const Eigen::Vector3d& a,

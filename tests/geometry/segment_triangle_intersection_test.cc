@@ -34,5 +34,22 @@ TEST(IntersectSegmentTriangle, MissesAndDegenerateCases) {
   EXPECT_FALSE(IntersectSegmentTriangle({0.2, 0.2, -1}, {0.2, 0.2, 1}, kA, kB, kA));  // flat
 }
 
+TEST(IntersectSegmentTriangle, ASegmentInThePlaneUpToRoundingMissesIt) {
+  // A blade laid in the plane of a liver's face (a path of the face-plane family): its ends lie
+  // about 1e-17 of the face's side of the plane, with signs that would say it crosses the face's
+  // edge at a quarter, 0.8 of an edge away from the segment.
+  const Vector3d a(-2.9164300000000001, 3.1646999999999998, 0.59366399999999997);
+  const Vector3d b(-3.1878600000000001, 3.5354199999999998, 0.94919900000000001);
+  const Vector3d c(-2.6046, 3.74729, 1.1957100000000001);
+  const Vector3d p(-3.3386034903776709, 2.9077945461283674, 0.31147833116981893);
+  const Vector3d q(-2.9192761166090575, 10.069540515014868, 7.5121052340832355);
+  EXPECT_FALSE(IntersectSegmentTriangle(p, q, a, b, c));
+  // One nearly in the plane but crossing it, a millionth of its length from it at its ends, does.
+  const auto shallow = IntersectSegmentTriangle({-1, 0.2, -1e-6}, {2, 0.2, 1e-6}, kA, kB, kC);
+  ASSERT_TRUE(shallow.has_value());
+  EXPECT_NEAR(shallow->t, 0.5, 1e-12);
+  EXPECT_TRUE(shallow->barycentric.isApprox(Vector3d(0.3, 0.5, 0.2), 1e-9)) << shallow->barycentric;
+}
+
 }  // namespace
 }  // namespace kerf::geometry
