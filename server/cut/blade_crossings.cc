@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
 #include "cut/element_keys.h"
 #include "geometry/moving_crossing.h"
@@ -46,9 +47,8 @@ absl::StatusOr<BladeCrossings> BladeCrossings::Create(const mesh::TetMesh* mesh,
 }
 
 Eigen::Vector3d BladeCrossings::MovedSincePrevious(VertexId v) const {
-  const auto it = previous_.find(Index(v));
-  return it == previous_.end() ? Eigen::Vector3d::Zero()
-                               : Eigen::Vector3d(mesh_->current_position(v) - it->second);
+  return Remembers(v) ? Eigen::Vector3d(mesh_->current_position(v) - previous_[Index(v)])
+                      : Eigen::Vector3d::Zero();
 }
 
 namespace {
@@ -192,9 +192,13 @@ std::vector<FaceCrossing> BladeCrossings::FacesCrossedBy(
 }
 
 absl::Status BladeCrossings::Remember(const std::vector<VertexId>& vertices) {
-  previous_.clear();
+  ++remembered_;
+  previous_.resize(mesh_->vertex_index_bound());
+  remembered_at_.resize(mesh_->vertex_index_bound(), 0);
   for (const VertexId v : vertices) {
-    if (mesh_->IsAlive(v)) previous_.try_emplace(Index(v), mesh_->current_position(v));
+    if (!mesh_->IsAlive(v)) continue;
+    previous_[Index(v)] = mesh_->current_position(v);
+    remembered_at_[Index(v)] = remembered_;
   }
   return grid_.RefreshTopology();
 }

@@ -11,7 +11,6 @@
 #include <optional>
 #include <vector>
 
-#include "absl/container/flat_hash_map.h"
 #include "absl/status/statusor.h"
 #include "cut/blade.h"
 #include "cut/tet_grid.h"
@@ -57,7 +56,10 @@ class BladeCrossings {
   // lets the grid learn the tets the mesh added and removed. Call after a pose was applied.
   absl::Status Remember(const std::vector<mesh::VertexId>& vertices);
   // Whether the remembered positions include `v`'s.
-  bool Remembers(mesh::VertexId v) const { return previous_.contains(mesh::Index(v)); }
+  bool Remembers(mesh::VertexId v) const {
+    const std::size_t i = mesh::Index(v);
+    return i < remembered_at_.size() && remembered_at_[i] == remembered_;
+  }
 
   // Whether the blade at `pose` meets the tet (its inside or boundary), on current positions.
   bool BladeMeets(const mesh::TetVertices& tet, const BladePose& pose) const;
@@ -93,7 +95,11 @@ class BladeCrossings {
 
   const mesh::TetMesh* mesh_;
   TetGrid grid_;
-  absl::flat_hash_map<std::uint32_t, Eigen::Vector3d> previous_;  // by vertex index
+  // The positions Remember kept, by vertex index: valid where remembered_at_ holds remembered_,
+  // the count of Remember calls (so a call forgets the last one's without touching them).
+  std::vector<Eigen::Vector3d> previous_;
+  std::vector<std::uint64_t> remembered_at_;
+  std::uint64_t remembered_ = 0;
 };
 
 }  // namespace kerf::cut

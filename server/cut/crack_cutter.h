@@ -536,7 +536,8 @@ class CrackCutter {
   absl::flat_hash_map<EdgeKey, double> blade_edges_;  // its temporary edge points then
   absl::flat_hash_set<EdgeKey> advancing_;            // those standing in for edges' points
   // The blade's crossings of each face it crosses (faces with no point for good), barycentric,
-  // since it began to cross it.
+  // since it began to cross it; a crossing within kMinTemporaryWeight of one kept is not kept
+  // again, so a blade held still in a face keeps a few, not one a pose.
   absl::flat_hash_map<FaceKey, std::vector<Eigen::Vector3d>, FaceKeyHash> crossed_faces_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;  // temporary piece -> its open tet
   // Temporary points by place (a face's key hash, or an open tet's id), and those used this pose.

@@ -6,6 +6,7 @@
 #include "base/check.h"
 #include "cut/crack_cutter.h"
 #include "geometry/point_triangle_distance.h"
+#include "geometry/segment_box.h"
 #include "geometry/segment_distance.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "geometry/tet_measures.h"
@@ -22,8 +23,12 @@ using mesh::VertexId;
 absl::flat_hash_map<TetId, CrackCutter::BladeIn> CrackCutter::BladeUnitsAt(
     const BladePose& pose) const {
   absl::flat_hash_map<TetId, BladeIn> blade;
+  const std::vector<TetId> units = UnitsAt(pose);
   BladeCrossingsAt at;
-  for (const TetId u : UnitsAt(pose)) {
+  // About half the units meet the blade; those share about half their faces and edges.
+  at.faces.reserve(2 * units.size());
+  at.edges.reserve(3 * units.size());
+  for (const TetId u : units) {
     if (std::optional<BladeIn> in = BladeInUnit(u, pose, &at)) blade[u] = *std::move(in);
   }
   // Every unit at an edge the blade passes through has its point, or meets the blade where the
@@ -122,6 +127,17 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
   const mesh::TetVertices corners = CornersOf(unit), placed = PlacedCorners(unit);
   std::array<Eigen::Vector3d, 4> x;
   for (int k = 0; k < 4; ++k) x[k] = mesh_->current_position(placed[k]);
+  // Most units near the blade are beside it: their box, grown by more than an edge's in-plane
+  // tolerance (BladeThroughEdge), tells. Not for a unit with a parted corner: its faces' crossings
+  // may be found on the other side's copies, which lie elsewhere, and it must agree with them.
+  const Eigen::Vector3d low = x[0].cwiseMin(x[1]).cwiseMin(x[2].cwiseMin(x[3]));
+  const Eigen::Vector3d high = x[0].cwiseMax(x[1]).cwiseMax(x[2].cwiseMax(x[3]));
+  if (!geometry::SegmentMeetsBox(pose.tip, pose.heel, low, high,
+                                 2 * kInPlaneTolerance * (high - low).norm()) &&
+      std::none_of(corners.begin(), corners.end(),
+                   [&](VertexId v) { return parting_.HasCopies(v); })) {
+    return std::nullopt;
+  }
   BladeIn in;
   bool meets = geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip) ||
                geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.heel);
@@ -230,7 +246,13 @@ void CrackCutter::KeepFarthestFaceCrossings(const BladePose* pose, const std::ve
           std::all_of(c.face.begin(), c.face.end(), [&](VertexId v) { return OnTheCrack(v); })) {
         continue;
       }
-      if (now.insert(c.face).second) crossed_faces_[c.face].push_back(c.barycentric);
+      if (!now.insert(c.face).second) continue;
+      std::vector<Eigen::Vector3d>& kept = crossed_faces_[c.face];
+      if (std::none_of(kept.begin(), kept.end(), [&](const Eigen::Vector3d& b) {
+            return (b - c.barycentric).lpNorm<Eigen::Infinity>() <= kMinTemporaryWeight;
+          })) {
+        kept.push_back(c.barycentric);
+      }
     }
   }
   Crossings left;
