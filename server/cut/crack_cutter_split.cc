@@ -133,10 +133,10 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   // where it is chosen by shape, and lack the faces to open).
   const bool stood = stood_.contains(unit);
   std::optional<CrackSplit> split = stood ? PiecesAsSplit(unit) : SplitWithoutApex(crack, rest);
-  // For good, a minimal split with a sliver gives way to a cone that has none.
+  // For good, a minimal split with slivers gives way to a cone that has fewer.
   std::optional<Eigen::Vector4d> cone_apex;
   if (blade == nullptr && !stood && split) {
-    cone_apex = SliverFreeConeApex(crack, *split, rest, kSliverAngleDeg);
+    cone_apex = ConeApexWithFewerSlivers(crack, *split, rest, kSliverAngleDeg);
     if (cone_apex) split.reset();
   }
   const bool was_open = open_.contains(unit);

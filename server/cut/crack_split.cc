@@ -431,14 +431,27 @@ double SmallestAngle(const CrackSplit& split,
   return smallest;
 }
 
-std::optional<Eigen::Vector4d> SliverFreeConeApex(
+std::optional<Eigen::Vector4d> ConeApexWithFewerSlivers(
     const TetCrack& crack, const CrackSplit& split,
     const std::function<Eigen::Vector3d(VertexId)>& rest, double degrees) {
-  if (split.kind == CrackSplitKind::kWhole || SmallestAngle(split, rest) >= degrees) {
-    return std::nullopt;
+  if (split.kind == CrackSplitKind::kWhole) return std::nullopt;
+  int split_slivers = 0;
+  for (const mesh::TetVertices& t : split.tets) {
+    if (SmallestDihedral(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])) < degrees) {
+      ++split_slivers;
+    }
   }
+  if (split_slivers == 0) return std::nullopt;
   const Eigen::Vector4d apex = ConeApexWeights(crack, rest);
-  if (SmallestConeAngle(crack, rest, apex) < degrees) return std::nullopt;
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) at += apex[k] * rest(crack.corners[k]);
+  int cone_slivers = 0;
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.triangles) {
+      if (SmallestDihedral(at, rest(t[0]), rest(t[1]), rest(t[2])) < degrees) ++cone_slivers;
+    }
+  }
+  if (cone_slivers >= split_slivers) return std::nullopt;
   return apex;
 }
 

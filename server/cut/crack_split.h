@@ -96,10 +96,10 @@ double SmallestAngle(const CrackSplit& split,
                      const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
 // The apex (barycentric) of the cone to split the tet by for good instead of `split`, a split
-// without a new point: where `split` has a piece under `degrees` and the best cone
-// (ConeApexWeights) has none. Its face triangles are the same, so the tets beside it agree.
-// nullopt otherwise (a whole tet, or no better cone).
-std::optional<Eigen::Vector4d> SliverFreeConeApex(
+// without a new point: where `split` has pieces under `degrees` and the best cone
+// (ConeApexWeights) has fewer. Its face triangles are the same, so the tets beside it agree.
+// nullopt otherwise (a whole tet, no piece under `degrees`, or no cone with fewer).
+std::optional<Eigen::Vector4d> ConeApexWithFewerSlivers(
     const TetCrack& crack, const CrackSplit& split,
     const std::function<Eigen::Vector3d(mesh::VertexId)>& rest, double degrees);
 

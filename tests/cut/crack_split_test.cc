@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 
@@ -548,7 +549,7 @@ TEST(CrackSplit, ACornerCutNearTheCornerHasASliverThatAConeAvoids) {
   const CrackSplit split = SplitAsCone(crack, tet.Apex(apex));
   EXPECT_NEAR(SmallestAngle(split, tet.RestOf()), cone, 1e-9);
   const std::optional<Eigen::Vector4d> chosen =
-      SliverFreeConeApex(crack, *minimal, tet.RestOf(), 5);
+      ConeApexWithFewerSlivers(crack, *minimal, tet.RestOf(), 5);
   ASSERT_TRUE(chosen.has_value());
   EXPECT_EQ(*chosen, apex);
   // Cut farther from the corner, the minimal split has no sliver and stays.
@@ -559,7 +560,52 @@ TEST(CrackSplit, ACornerCutNearTheCornerHasASliverThatAConeAvoids) {
   const TetCrack round_crack = round.Crack();
   const std::optional<CrackSplit> round_split = SplitWithoutApex(round_crack, round.RestOf());
   ASSERT_TRUE(round_split.has_value());
-  EXPECT_FALSE(SliverFreeConeApex(round_crack, *round_split, round.RestOf(), 5).has_value());
+  EXPECT_FALSE(ConeApexWithFewerSlivers(round_crack, *round_split, round.RestOf(), 5).has_value());
+}
+
+// The number of the split's tets under 5 degrees.
+int SliversOf(const CrackSplit& split, const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  int slivers = 0;
+  for (const mesh::TetVertices& t : split.tets) {
+    const std::array<double, 6> angles =
+        geometry::DihedralAnglesDeg(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3]));
+    if (*std::min_element(angles.begin(), angles.end()) < 5) ++slivers;
+  }
+  return slivers;
+}
+
+// A quad cut with three of its points near corner 0: the minimal split (case ii) has two pieces
+// under 5 degrees. The best cone over the same face triangles still has one, yet fewer, so it is
+// taken; with the fourth point farther along its edge the cone has as many, and the minimal
+// split stays.
+TEST(CrackSplit, AConeWithFewerSliversReplacesAMinimalSplit) {
+  const auto quad = [](double last) {
+    auto tet = std::make_unique<OneTet>();
+    tet->CutEdge(0, 2, 0.06);
+    tet->CutEdge(0, 3, 0.06);
+    tet->CutEdge(1, 2, 0.06);
+    tet->CutEdge(1, 3, last);
+    return tet;
+  };
+  const std::unique_ptr<OneTet> fewer = quad(0.4);
+  const TetCrack crack = fewer->Crack();
+  const std::optional<CrackSplit> minimal = SplitWithoutApex(crack, fewer->RestOf());
+  ASSERT_TRUE(minimal.has_value());
+  EXPECT_EQ(minimal->kind, CrackSplitKind::kMinimal);
+  EXPECT_EQ(SliversOf(*minimal, fewer->RestOf()), 2);
+  const std::optional<Eigen::Vector4d> apex =
+      ConeApexWithFewerSlivers(crack, *minimal, fewer->RestOf(), 5);
+  ASSERT_TRUE(apex.has_value());
+  const CrackSplit cone = SplitAsCone(crack, fewer->Apex(*apex));
+  EXPECT_EQ(SliversOf(cone, fewer->RestOf()), 1);
+  EXPECT_GT(SmallestAngle(cone, fewer->RestOf()), SmallestAngle(*minimal, fewer->RestOf()));
+
+  const std::unique_ptr<OneTet> as_many = quad(0.5);
+  const TetCrack other = as_many->Crack();
+  const std::optional<CrackSplit> stays = SplitWithoutApex(other, as_many->RestOf());
+  ASSERT_TRUE(stays.has_value());
+  EXPECT_EQ(SliversOf(*stays, as_many->RestOf()), 2);
+  EXPECT_FALSE(ConeApexWithFewerSlivers(other, *stays, as_many->RestOf(), 5).has_value());
 }
 
 }  // namespace
