@@ -312,6 +312,26 @@ double SmallestConeAngle(const TetCrack& crack,
   return smallest;
 }
 
+// The cone's pieces (from `apex` over the crack's face triangles) under `degrees`.
+int ConePiecesUnder(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+                    const Eigen::Vector3d& apex, double degrees) {
+  int under = 0;
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.triangles) {
+      if (SmallestDihedral(apex, rest(t[0]), rest(t[1]), rest(t[2])) < degrees) ++under;
+    }
+  }
+  return under;
+}
+
+// The point at barycentric `weights` on the tet's corners (rest positions).
+Eigen::Vector3d PointAt(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+                        const Eigen::Vector4d& weights) {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) point += weights[k] * rest(crack.corners[k]);
+  return point;
+}
+
 // Where a cone's apex is looked for: from `from` towards `to`, on the crack's plane if it has
 // one. Where the crack has no inner part the apex may be anywhere inside: from the tet's middle
 // towards the middle of its faces' points. Otherwise from the middle of the trace points towards
@@ -417,9 +437,7 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
 double SmallestConeAngle(const TetCrack& crack,
                          const std::function<Eigen::Vector3d(VertexId)>& rest,
                          const Eigen::Vector4d& weights) {
-  Eigen::Vector3d apex = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 4; ++k) apex += weights[k] * rest(crack.corners[k]);
-  return SmallestConeAngle(crack, rest, apex);
+  return SmallestConeAngle(crack, rest, PointAt(crack, rest, weights));
 }
 
 double SmallestAngle(const CrackSplit& split,
@@ -431,27 +449,25 @@ double SmallestAngle(const CrackSplit& split,
   return smallest;
 }
 
+int PiecesUnder(const CrackSplit& split, const std::function<Eigen::Vector3d(VertexId)>& rest,
+                double degrees) {
+  int under = 0;
+  for (const mesh::TetVertices& t : split.tets) {
+    if (SmallestDihedral(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])) < degrees) ++under;
+  }
+  return under;
+}
+
 std::optional<Eigen::Vector4d> ConeApexWithFewerSlivers(
     const TetCrack& crack, const CrackSplit& split,
     const std::function<Eigen::Vector3d(VertexId)>& rest, double degrees) {
   if (split.kind == CrackSplitKind::kWhole) return std::nullopt;
-  int split_slivers = 0;
-  for (const mesh::TetVertices& t : split.tets) {
-    if (SmallestDihedral(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])) < degrees) {
-      ++split_slivers;
-    }
-  }
+  const int split_slivers = PiecesUnder(split, rest, degrees);
   if (split_slivers == 0) return std::nullopt;
   const Eigen::Vector4d apex = ConeApexWeights(crack, rest);
-  Eigen::Vector3d at = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 4; ++k) at += apex[k] * rest(crack.corners[k]);
-  int cone_slivers = 0;
-  for (const FaceSplit& f : crack.faces) {
-    for (const Triangle& t : f.triangles) {
-      if (SmallestDihedral(at, rest(t[0]), rest(t[1]), rest(t[2])) < degrees) ++cone_slivers;
-    }
+  if (ConePiecesUnder(crack, rest, PointAt(crack, rest, apex), degrees) >= split_slivers) {
+    return std::nullopt;
   }
-  if (cone_slivers >= split_slivers) return std::nullopt;
   return apex;
 }
 

@@ -94,6 +94,9 @@ double SmallestConeAngle(const TetCrack& crack,
                          const Eigen::Vector4d& weights);
 double SmallestAngle(const CrackSplit& split,
                      const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
+// How many of a split's tets have a dihedral angle under `degrees` (rest positions).
+int PiecesUnder(const CrackSplit& split, const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
+                double degrees);
 
 // The apex (barycentric) of the cone to split the tet by for good instead of `split`, a split
 // without a new point: where `split` has pieces under `degrees` and the best cone

@@ -563,17 +563,6 @@ TEST(CrackSplit, ACornerCutNearTheCornerHasASliverThatAConeAvoids) {
   EXPECT_FALSE(ConeApexWithFewerSlivers(round_crack, *round_split, round.RestOf(), 5).has_value());
 }
 
-// The number of the split's tets under 5 degrees.
-int SliversOf(const CrackSplit& split, const std::function<Eigen::Vector3d(VertexId)>& rest) {
-  int slivers = 0;
-  for (const mesh::TetVertices& t : split.tets) {
-    const std::array<double, 6> angles =
-        geometry::DihedralAnglesDeg(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3]));
-    if (*std::min_element(angles.begin(), angles.end()) < 5) ++slivers;
-  }
-  return slivers;
-}
-
 // A quad cut with three of its points near corner 0: the minimal split (case ii) has two pieces
 // under 5 degrees. The best cone over the same face triangles still has one, yet fewer, so it is
 // taken; with the fourth point farther along its edge the cone has as many, and the minimal
@@ -592,19 +581,19 @@ TEST(CrackSplit, AConeWithFewerSliversReplacesAMinimalSplit) {
   const std::optional<CrackSplit> minimal = SplitWithoutApex(crack, fewer->RestOf());
   ASSERT_TRUE(minimal.has_value());
   EXPECT_EQ(minimal->kind, CrackSplitKind::kMinimal);
-  EXPECT_EQ(SliversOf(*minimal, fewer->RestOf()), 2);
+  EXPECT_EQ(PiecesUnder(*minimal, fewer->RestOf(), 5), 2);
   const std::optional<Eigen::Vector4d> apex =
       ConeApexWithFewerSlivers(crack, *minimal, fewer->RestOf(), 5);
   ASSERT_TRUE(apex.has_value());
   const CrackSplit cone = SplitAsCone(crack, fewer->Apex(*apex));
-  EXPECT_EQ(SliversOf(cone, fewer->RestOf()), 1);
+  EXPECT_EQ(PiecesUnder(cone, fewer->RestOf(), 5), 1);
   EXPECT_GT(SmallestAngle(cone, fewer->RestOf()), SmallestAngle(*minimal, fewer->RestOf()));
 
   const std::unique_ptr<OneTet> as_many = quad(0.5);
   const TetCrack other = as_many->Crack();
   const std::optional<CrackSplit> stays = SplitWithoutApex(other, as_many->RestOf());
   ASSERT_TRUE(stays.has_value());
-  EXPECT_EQ(SliversOf(*stays, as_many->RestOf()), 2);
+  EXPECT_EQ(PiecesUnder(*stays, as_many->RestOf(), 5), 2);
   EXPECT_FALSE(ConeApexWithFewerSlivers(other, *stays, as_many->RestOf(), 5).has_value());
 }
 
