@@ -297,6 +297,11 @@ class CrackCutter {
   // `high` leaves a half under kSliverAngleDeg (rest positions).
   bool BisectionLeavesSliver(mesh::VertexId low, mesh::VertexId high, double fraction,
                              const std::vector<mesh::TetId>& units) const;
+  // Whether the edge from `corner` to `other` meets another edge of one of `units` at `corner`
+  // under kThinCornerDeg (rest positions): a point on it near that corner makes a thin triangle
+  // with that edge, in whatever split.
+  bool IsThinCorner(mesh::VertexId corner, mesh::VertexId other,
+                    const std::vector<mesh::TetId>& units) const;
   // The share of a crossing's edge (or face) within which it snaps to a corner: the snap
   // fraction of the tissue's edge length there, so a piece's edges snap as far as the edges of
   // the tet it is part of (cuts through pieces make no smaller pieces than cuts through tets).

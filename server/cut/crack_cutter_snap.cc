@@ -2,6 +2,7 @@
 // crack_cutter.h).
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "cut/crack_cutter.h"
@@ -122,7 +123,8 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
   const std::vector<TetId> units = UnitsAround({low, high});
   const VertexId nearer = fraction <= 0.5 ? low : high;
   if (from_corner < share ||
-      (from_corner < sliver_share && BisectionLeavesSliver(low, high, fraction, units))) {
+      (from_corner < sliver_share && (BisectionLeavesSliver(low, high, fraction, units) ||
+                                      IsThinCorner(nearer, nearer == low ? high : low, units)))) {
     if (MaySnap(nearer, from)) {
       Snap(nearer, touched);
       return;
@@ -158,6 +160,20 @@ bool CrackCutter::BisectionLeavesSliver(VertexId low, VertexId high, double frac
       const std::array<double, 6> angles =
           geometry::DihedralAnglesDeg(half[0], half[1], half[2], half[3]);
       if (*std::min_element(angles.begin(), angles.end()) < kSliverAngleDeg) return true;
+    }
+  }
+  return false;
+}
+
+bool CrackCutter::IsThinCorner(VertexId corner, VertexId other,
+                               const std::vector<TetId>& units) const {
+  const Eigen::Vector3d at = mesh_->rest_position(corner);
+  const Eigen::Vector3d along = (mesh_->rest_position(other) - at).normalized();
+  const double cosine = std::cos(kThinCornerDeg * M_PI / 180);
+  for (const TetId u : units) {
+    for (const VertexId w : CornersOf(u)) {
+      if (w == corner || w == other) continue;
+      if (along.dot((mesh_->rest_position(w) - at).normalized()) > cosine) return true;
     }
   }
   return false;

@@ -22,8 +22,12 @@ inline constexpr double kDefaultCrackSnapFraction = 0.2;
 // fraction, crossings 0.2-0.35 of an edge from a corner, of which most of the slivers cut into
 // meshes of uneven tets came (docs/cutting-fidelity.md). None with the least snapping (a snap
 // fraction of kMinSnapFraction or less).
+// It snaps too (or moves off) where its edge meets another edge of a tet around it at that
+// corner under kThinCornerDeg: a point there makes a thin triangle whatever the split (two thirds
+// of the slivers left on liver.msh's hand paths came of such corners: docs/cutting-fidelity.md).
 inline constexpr double kSliverSnapScale = 1.75;
 inline constexpr double kSliverAngleDeg = 5;
+inline constexpr double kThinCornerDeg = 15;
 // A vertex snaps onto the crack only within this share of the smallest mean edge of the tets
 // around it from the step's swept surface (just under the fidelity meter's tolerance, 0.25 of the
 // tet's: lab/crack_fidelity.h), so no crack face bends farther than that from the blade's path

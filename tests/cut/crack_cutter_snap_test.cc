@@ -81,6 +81,35 @@ TEST(CrackCutter, ACrossingThatWouldLeaveASliverSnapsToItsCorner) {
   }
 }
 
+// A tet whose edges 0-1 and 0-2 meet at corner 0 at about 12 degrees, cut by the plane z = 0.27,
+// 0.27 of both edges up from corner 0, beyond the snap share. Bisecting the tet at edge 0-1's
+// crossing would leave a half under 5 degrees, so corner 0 is snapped onto the crack; bisecting
+// it at edge 0-2's would not, and a point kept there would make a 12-degree triangle with the
+// snapped corner and three pieces under 5 degrees. Near a thin corner, that crossing is taken at
+// the corner too: one tet cut, no piece under 5 degrees.
+TEST(CrackCutter, ACrossingNearAThinCornerSnapsToIt) {
+  TetMesh m;
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0, 1),
+                                   Eigen::Vector3d(0.8, 0.05, 1), Eigen::Vector3d(0, -1, -0.5)}) {
+    m.AddVertex(p);
+  }
+  ASSERT_TRUE(
+      m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)}).ok());
+  CrackCutter cutter =
+      *CrackCutter::Create(&m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100});
+  ASSERT_TRUE(cutter.ApplyPose({0, {-1, -2, 0.27}, {3, -2, 0.27}}).ok());
+  ASSERT_TRUE(cutter.ApplyPose({0.1, {-1, 2, 0.27}, {3, 2, 0.27}}).ok());
+  cutter.Finish();
+  ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_EQ(cutter.statistics().cut_tets, 1u);
+  const Eigen::Vector3d on_edge_0_2 =
+      Eigen::Vector3d(1, 0, 0) + 0.27 * Eigen::Vector3d(-0.2, 0.05, 1);
+  EXPECT_FALSE(std::any_of(m.vertices().begin(), m.vertices().end(), [&](auto v) {
+    return (m.rest_position(v) - on_edge_0_2).norm() < 1e-12;
+  }));
+  EXPECT_EQ(mesh::MeasureMeshQuality(m).slivers, 0u);
+}
+
 // A tet with three short edges at one end and three long ones to its far corner (mean edge
 // 1.67): the plane x = 0.45 crosses the long edges 0.15 of their length from the short end, within
 // the snap fraction (0.2), but its corners there lie 0.27 of the tet's mean edge from the plane.
