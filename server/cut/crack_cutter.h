@@ -260,6 +260,16 @@ class CrackCutter {
   enum class EdgeCrossingFrom { kSweep, kBladeLeaving };
   void RecordEdgeCrossing(mesh::VertexId low, mesh::VertexId high, double fraction,
                           EdgeCrossingFrom from, std::vector<mesh::TetId>* touched);
+  // Where a point of the edge low-high at `fraction` goes: within the snap share of a corner (or
+  // within the sliver share, where a piece under kSliverAngleDeg or a thin corner would come of
+  // it), that corner snaps onto the crack if it may (MaySnap; none is returned), else the point
+  // moves away from it, out of those shares as far as it may without leaving the reach of where
+  // the blade was (where `may_move`; else it stays). `units`: those at the edge. Adds the units a
+  // snap touches.
+  std::optional<double> EdgePointOffCorners(mesh::VertexId low, mesh::VertexId high,
+                                            double fraction, EdgeCrossingFrom from, bool may_move,
+                                            const std::vector<mesh::TetId>& units,
+                                            std::vector<mesh::TetId>* touched);
   // Snaps the corners of `units` within the snap fraction of their unit's mean edge of the
   // step's swept surface (the blade through a vertex, along an edge or in a face's plane crosses
   // no edge inside).

@@ -73,17 +73,14 @@ void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& 
       RecordEdgeCrossing(low, high, fraction, EdgeCrossingFrom::kBladeLeaving, &around);
     } else {
       // The crack's front advanced along the edge: its point moves there (its vertex went when
-      // the blade's point stood in for it), or the far corner snaps.
-      EdgePoint& point = edge_points_.at(key);
-      KERF_CHECK(point.vertex == kNoVertex);
-      const double share = SnapShare(std::array<VertexId, 2>{low, high});
+      // the blade's point stood in for it), or, near the far corner, that corner snaps or the
+      // point stops short of it.
+      KERF_CHECK(edge_points_.at(key).vertex == kNoVertex);
       around = UnitsAround({low, high});
-      const VertexId nearer = fraction <= 0.5 ? low : high;
-      if (std::min(fraction, 1 - fraction) < share &&
-          MaySnap(nearer, EdgeCrossingFrom::kBladeLeaving)) {
-        Snap(nearer, &around);
-      } else {
-        point = {fraction};
+      if (const std::optional<double> at =
+              EdgePointOffCorners(low, high, fraction, EdgeCrossingFrom::kBladeLeaving,
+                                  /*may_move=*/true, around, &around)) {
+        edge_points_.at(key) = {*at};
       }
     }
     Join(around);

@@ -116,33 +116,40 @@ void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fractio
           std::array<VertexId, 2>{low, high})) {
     return;
   }
+  const std::vector<TetId> units = UnitsAround({low, high});
+  // A swept crossing that may not snap moves off the corner. One the blade leaves stays where the
+  // pieces around stood on it: moved, the crack would jump as the blade goes (in a live cut, the
+  // liver's progressive rows of the stability matrix blew up).
+  const std::optional<double> at = EdgePointOffCorners(
+      low, high, fraction, from, from == EdgeCrossingFrom::kSweep, units, touched);
+  if (!at) return;
+  edge_points_[key] = {*at};
+  touched->insert(touched->end(), units.begin(), units.end());
+}
+
+std::optional<double> CrackCutter::EdgePointOffCorners(VertexId low, VertexId high, double fraction,
+                                                       EdgeCrossingFrom from, bool may_move,
+                                                       const std::vector<TetId>& units,
+                                                       std::vector<TetId>* touched) {
   const double share = SnapShare(std::array<VertexId, 2>{low, high});
   // The least snapping (the fraction at its minimum) moves no crossing for quality either.
   const double sliver_share = snap_fraction_ > kMinSnapFraction ? kSliverSnapScale * share : 0;
   const double from_corner = std::min(fraction, 1 - fraction);
-  const std::vector<TetId> units = UnitsAround({low, high});
+  if (from_corner >= std::max(share, sliver_share)) return fraction;
   const VertexId nearer = fraction <= 0.5 ? low : high;
-  if (from_corner < share ||
-      (from_corner < sliver_share && (BisectionLeavesSliver(low, high, fraction, units) ||
-                                      IsThinCorner(nearer, nearer == low ? high : low, units)))) {
-    if (MaySnap(nearer, from)) {
-      Snap(nearer, touched);
-      return;
-    }
-    // Too far from the blade's path to snap onto the crack: a swept crossing moves away from
-    // the corner instead, out of the snap share (and the sliver share) as far as it may go
-    // without leaving the reach of the blade's crossing. One the blade leaves stays where the
-    // pieces around stood on it: moved, the crack would jump as the blade goes (in a live cut,
-    // the liver's progressive rows of the stability matrix blew up).
-    if (from == EdgeCrossingFrom::kSweep) {
-      const double length = (mesh_->rest_position(low) - mesh_->rest_position(high)).norm();
-      const double moved =
-          std::min({std::max(share, sliver_share), from_corner + Reach(units) / length, 0.5});
-      fraction = nearer == low ? moved : 1 - moved;
-    }
+  if (from_corner >= share && !BisectionLeavesSliver(low, high, fraction, units) &&
+      !IsThinCorner(nearer, nearer == low ? high : low, units)) {
+    return fraction;
   }
-  edge_points_[key] = {fraction};
-  touched->insert(touched->end(), units.begin(), units.end());
+  if (MaySnap(nearer, from)) {
+    Snap(nearer, touched);
+    return std::nullopt;
+  }
+  if (!may_move) return fraction;
+  const double length = (mesh_->rest_position(low) - mesh_->rest_position(high)).norm();
+  const double moved =
+      std::min({std::max(share, sliver_share), from_corner + Reach(units) / length, 0.5});
+  return nearer == low ? moved : 1 - moved;
 }
 
 bool CrackCutter::BisectionLeavesSliver(VertexId low, VertexId high, double fraction,

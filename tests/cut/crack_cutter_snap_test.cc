@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <vector>
 
 #include "cut/crack_cutter.h"
 #include "lab/crack_fidelity.h"
@@ -107,6 +108,46 @@ TEST(CrackCutter, ACrossingNearAThinCornerSnapsToIt) {
   EXPECT_FALSE(std::any_of(m.vertices().begin(), m.vertices().end(), [&](auto v) {
     return (m.rest_position(v) - on_edge_0_2).norm() < 1e-12;
   }));
+  EXPECT_EQ(mesh::MeasureMeshQuality(m).slivers, 0u);
+}
+
+// A tet whose edges from corner 1 to corners 0 and 2 meet there at about 9 degrees, cut three
+// times by a vertical blade: across at x = 0.05 (corners 0 and 2 snap onto the crack) and at
+// x = 0.3 (a point on edge 0-1), then, at x = 0.6, in from under edge 0-1, back onto it and along
+// it towards corner 1 to x = 0.78, where it leaves. The crack's front advanced along the edge,
+// from its point at x = 0.3 to where the blade left it, 0.31 of the edge's piece from corner 1:
+// too far from the blade's last step for corner 1 to snap, and a point kept there makes a piece
+// of 3.7 degrees. It moves off the thin corner instead, as a crossing the blade swept would.
+TEST(CrackCutter, ACrackAdvancingAlongAnEdgeStopsShortOfAThinCorner) {
+  TetMesh m;
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.05, 0),
+                                   Eigen::Vector3d(0, 0.15, 0), Eigen::Vector3d(0.6, 0.08, 0.5)}) {
+    m.AddVertex(p);
+  }
+  ASSERT_TRUE(
+      m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)}).ok());
+  CrackCutter cutter =
+      *CrackCutter::Create(&m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100});
+  // The blade stands upright at (x, y), through the tet's height; it moves 0.02 a pose.
+  const std::vector<Eigen::Vector2d> corners = {{0.05, -0.3}, {0.05, 0.5},   {0.3, 0.5},
+                                                {0.3, -0.3},  {0.6, -0.3},   {0.6, 0.06},
+                                                {0.6, 0.03},  {0.78, 0.039}, {0.78, -0.3}};
+  double time = 0;
+  const auto pose_at = [&](const Eigen::Vector2d& at) {
+    time += 0.01;
+    return cutter.ApplyPose({time, {at.x(), at.y(), -0.5}, {at.x(), at.y(), 1.2}});
+  };
+  ASSERT_TRUE(pose_at(corners[0]).ok());
+  for (std::size_t i = 1; i < corners.size(); ++i) {
+    const Eigen::Vector2d move = corners[i] - corners[i - 1];
+    const int steps = std::max(1, static_cast<int>(move.cwiseAbs().maxCoeff() / 0.02));
+    for (int k = 1; k <= steps; ++k) {
+      ASSERT_TRUE(pose_at(corners[i - 1] + move * k / steps).ok());
+    }
+  }
+  cutter.Finish();
+  ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  EXPECT_EQ(cutter.statistics().cut_tets, 1u);
   EXPECT_EQ(mesh::MeasureMeshQuality(m).slivers, 0u);
 }
 
