@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <span>
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
@@ -54,18 +53,6 @@ Eigen::Vector3d BladeCrossings::MovedSincePrevious(VertexId v) const {
 
 namespace {
 
-// The box of a live tet's corners where they are now. (Called for every tet a grid query
-// returns: inline, on the positions' array.)
-mesh::Bounds CurrentBox(const mesh::TetMesh& mesh, TetId t) {
-  const std::span<const Eigen::Vector3d> x = mesh.current_positions();
-  const mesh::TetVertices& v = mesh.tet(t);
-  const Eigen::Vector3d& a = x[Index(v[0])];
-  const Eigen::Vector3d& b = x[Index(v[1])];
-  const Eigen::Vector3d& c = x[Index(v[2])];
-  const Eigen::Vector3d& d = x[Index(v[3])];
-  return {a.cwiseMin(b).cwiseMin(c.cwiseMin(d)), a.cwiseMax(b).cwiseMax(c.cwiseMax(d))};
-}
-
 // Whether boxes [a_low, a_high] and [b_low, b_high] meet.
 bool BoxesMeet(const Eigen::Vector3d& a_low, const Eigen::Vector3d& a_high,
                const Eigen::Vector3d& b_low, const Eigen::Vector3d& b_high) {
@@ -79,7 +66,7 @@ std::vector<TetId> BladeCrossings::Near(const Eigen::Vector3d& low,
   std::vector<TetId> near = grid_.Candidates(low, high);
   std::erase_if(near, [&](TetId t) {
     if (!mesh_->IsAlive(t)) return true;
-    const mesh::Bounds box = CurrentBox(*mesh_, t);
+    const mesh::Bounds box = mesh::MeasureTetBounds(*mesh_, t, /*current=*/true);
     return !BoxesMeet(box.low, box.high, low, high);
   });
   return near;
@@ -109,7 +96,7 @@ std::vector<TetId> BladeCrossings::NearSweep(const BladePose& from, const BladeP
       narrow ? grid_.Candidates(low, high, meets) : grid_.Candidates(low, high);
   std::erase_if(near, [&](TetId t) {
     if (!mesh_->IsAlive(t)) return true;
-    const mesh::Bounds box = CurrentBox(*mesh_, t);
+    const mesh::Bounds box = mesh::MeasureTetBounds(*mesh_, t, /*current=*/true);
     return !BoxesMeet(box.low, box.high, low, high) || (narrow && !meets(box.low, box.high));
   });
   return near;

@@ -19,19 +19,6 @@ Bounds MeasureBounds(const TetMesh& mesh, bool current) {
   return bounds;
 }
 
-Bounds MeasureTetBounds(const TetMesh& mesh, TetId t, bool current) {
-  const TetVertices& v = mesh.tet(t);
-  const auto position = [&](int i) -> const Eigen::Vector3d& {
-    return current ? mesh.current_position(v[i]) : mesh.rest_position(v[i]);
-  };
-  Bounds bounds{position(0), position(0)};
-  for (int i = 1; i < 4; ++i) {
-    bounds.low = bounds.low.cwiseMin(position(i));
-    bounds.high = bounds.high.cwiseMax(position(i));
-  }
-  return bounds;
-}
-
 double MeanEdgeLength(const TetMesh& mesh) {
   double sum = 0;
   std::size_t count = 0;

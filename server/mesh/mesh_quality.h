@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <span>
 
 #include "mesh/tet_mesh.h"
 
@@ -37,8 +38,18 @@ struct Bounds {
   double diagonal() const { return (high - low).norm(); }
 };
 Bounds MeasureBounds(const TetMesh& mesh, bool current = false);
-// The same for the corners of one live tet. O(1).
-Bounds MeasureTetBounds(const TetMesh& mesh, TetId t, bool current = false);
+// The same for the corners of one live tet. O(1); inline, as grid queries call it for every
+// tet they return (the tet is checked alive, its corners are then).
+inline Bounds MeasureTetBounds(const TetMesh& mesh, TetId t, bool current = false) {
+  const std::span<const Eigen::Vector3d> x =
+      current ? mesh.current_positions() : mesh.rest_positions();
+  const TetVertices& v = mesh.tet(t);
+  const Eigen::Vector3d& a = x[Index(v[0])];
+  const Eigen::Vector3d& b = x[Index(v[1])];
+  const Eigen::Vector3d& c = x[Index(v[2])];
+  const Eigen::Vector3d& d = x[Index(v[3])];
+  return {a.cwiseMin(b).cwiseMin(c.cwiseMin(d)), a.cwiseMax(b).cwiseMax(c.cwiseMax(d))};
+}
 
 // The mean length of the live tets' edges (each counted once per tet), on current
 // positions; 0 for a mesh with no tets. O(tets).
