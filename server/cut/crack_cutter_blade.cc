@@ -76,10 +76,11 @@ void CrackCutter::KeepEdgePointsLeft(const absl::flat_hash_map<TetId, BladeIn>& 
       // the blade's point stood in for it), or, near the far corner, that corner snaps or the
       // point stops short of it.
       KERF_CHECK(edge_points_.at(key).vertex == kNoVertex);
-      around = UnitsAround({low, high});
+      const std::vector<TetId> units = UnitsAround({low, high});
+      around = units;
       if (const std::optional<double> at =
               EdgePointOffCorners(low, high, fraction, EdgeCrossingFrom::kBladeLeaving,
-                                  /*may_move=*/true, around, &around)) {
+                                  /*may_move=*/true, units, &around)) {
         edge_points_.at(key) = {*at};
       }
     }
