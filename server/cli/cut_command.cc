@@ -10,6 +10,7 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "cli/command_args.h"
 #include "cli/json_output.h"
 #include "cut/crack_cutter.h"
@@ -32,7 +33,7 @@ namespace {
 
 constexpr absl::string_view kCutUsage =
     "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end] "
-    "[--uncovered OUT.csv] "
+    "[--uncovered OUT.csv] [--overcut OUT.csv] "
     "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
 double TotalRestVolume(const mesh::TetMesh& m) {
@@ -41,13 +42,29 @@ double TotalRestVolume(const mesh::TetMesh& m) {
   return volume;
 }
 
+// The crack faces farther than the tolerance from the swept surface, one row each: corners,
+// each corner's and the middle's distance from the sweep (in local edges), the local edge.
+absl::Status WriteOvercutCsv(const lab::FidelityMeter& fidelity, const lab::CrackFaces& crack,
+                             const std::string& path) {
+  std::string csv = "x0,y0,z0,x1,y1,z1,x2,y2,z2,d0,d1,d2,dmiddle,edge\n";
+  for (const lab::FidelityMeter::FaceDistance& face : fidelity.Overcut(crack)) {
+    for (const Eigen::Vector3d& p : face.triangle) {  // exact, to find the face in OUT.vtu
+      absl::StrAppendFormat(&csv, "%.17g,%.17g,%.17g,", p.x(), p.y(), p.z());
+    }
+    for (const double d : face.distance) absl::StrAppend(&csv, d, ",");
+    absl::StrAppend(&csv, face.edge, "\n");
+  }
+  return mesh::WriteTextFile(path, csv);
+}
+
 // The VTU of a cut mesh with the arrays kerf cut writes.
 std::string CutMeshVtu(const mesh::TetMesh& m, const cut::CrackCutter& cutter,
                        std::uint32_t original_vertices) {
   mesh::VtuExtraArrays extra;
   std::vector<std::int64_t> source_vertex;
   for (const mesh::VertexId v : m.vertices()) {
-    source_vertex.push_back(mesh::Index(v) < original_vertices ? mesh::Index(v) : -1);
+    const std::uint32_t index = mesh::Index(v);
+    source_vertex.push_back(index < original_vertices ? std::int64_t{index} : -1);
   }
   std::vector<std::int64_t> source_tet;
   for (const mesh::TetId t : m.tets()) source_tet.push_back(mesh::Index(cutter.SourceTet(t)));
@@ -298,6 +315,11 @@ absl::StatusOr<kerf::v1::CutReport> CutWith(cut::CrackCutter* cutter, mesh::TetM
       }
       if (absl::Status s = mesh::WriteTextFile(options.uncovered_path, csv); !s.ok()) return s;
     }
+    if (!options.overcut_path.empty()) {
+      if (absl::Status s = WriteOvercutCsv(*fidelity, crack, options.overcut_path); !s.ok()) {
+        return s;
+      }
+    }
     report.set_fidelity_measured(true);
     report.set_swept_samples(static_cast<std::uint32_t>(f.samples));
     report.set_crossed_tets(static_cast<std::uint32_t>(fidelity->crossed_tets()));
@@ -373,6 +395,7 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   for (auto [flag, into] :
        {std::pair<absl::string_view, std::string*>{"--trace", &options.trace_path},
         {"--uncovered", &options.uncovered_path},
+        {"--overcut", &options.overcut_path},
         {"--dump-every-pose", &options.dump_directory}}) {
     absl::StatusOr<std::optional<std::vector<absl::string_view>>> value = rest.TakeOption(flag, 1);
     if (!value.ok()) return value.status();

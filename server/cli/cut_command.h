@@ -1,5 +1,6 @@
 // kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end]
-// [--uncovered OUT.csv] [--min-temporary-height F] [--snap F] [--trace OUT.jsonl]
+// [--uncovered OUT.csv] [--overcut OUT.csv] [--min-temporary-height F] [--snap F] [--trace
+// OUT.jsonl]
 // [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a
 // scene (its initial state: rest, or the static solution of a STATIC scene) and writes the result.
 // OUT.vtu has the current positions as points, the point arrays rest_position and source_vertex
@@ -37,6 +38,9 @@ struct CutOptions {
   std::string out_path;
   // Non-empty: the swept surface's samples no crack face covers, as CSV (x, y, z, local edge).
   std::string uncovered_path;
+  // Non-empty: the crack faces farther than the tolerance from the swept surface, as CSV (the
+  // corners, the distance of each and of the middle in local edges, the local edge).
+  std::string overcut_path;
   // Non-empty: one JSON line per pose (and one after the blade is withdrawn): the Table 1
   // cases of the tets the blade is in, tets alive, valid, and the step's coverage.
   std::string trace_path;

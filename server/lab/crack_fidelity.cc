@@ -313,22 +313,37 @@ Fidelity FidelityMeter::Measure(const CrackFaces& crack) const {
   f.crack_faces = crack.size();
   f.unpaired_faces = crack.unpaired();
   for (const std::array<Eigen::Vector3d, 3>& t : crack.triangles()) {
-    const Eigen::Vector3d middle = (t[0] + t[1] + t[2]) / 3;
-    const double edge = LocalEdgeLength(middle);
-    const double cap = 2 * options_.tolerance * edge;
-    double farthest = 0;
-    for (const Eigen::Vector3d& p : {t[0], t[1], t[2], middle}) {
-      double nearest = cap;
-      for (const std::uint32_t i : swept_index_.Near(p, cap)) {
-        const std::array<Eigen::Vector3d, 3>& s = swept_[i];
-        nearest = std::min(nearest, geometry::DistanceToTriangle(p, s[0], s[1], s[2]));
-      }
-      farthest = std::max(farthest, nearest);
-    }
-    f.max_overcut = std::max(f.max_overcut, farthest / edge);
-    if (farthest > options_.tolerance * edge * (1 + 1e-9)) ++f.overcut_faces;
+    const FaceDistance d = DistanceFromSweep(t);
+    f.max_overcut = std::max(f.max_overcut, d.farthest());
+    if (IsOvercut(d)) ++f.overcut_faces;
   }
   return f;
+}
+
+FidelityMeter::FaceDistance FidelityMeter::DistanceFromSweep(
+    const std::array<Eigen::Vector3d, 3>& t) const {
+  const Eigen::Vector3d middle = (t[0] + t[1] + t[2]) / 3;
+  FaceDistance d{.triangle = t, .distance = {}, .edge = LocalEdgeLength(middle)};
+  const double cap = 2 * options_.tolerance * d.edge;
+  const std::array<Eigen::Vector3d, 4> points = {t[0], t[1], t[2], middle};
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    double nearest = cap;
+    for (const std::uint32_t i : swept_index_.Near(points[k], cap)) {
+      const std::array<Eigen::Vector3d, 3>& s = swept_[i];
+      nearest = std::min(nearest, geometry::DistanceToTriangle(points[k], s[0], s[1], s[2]));
+    }
+    d.distance[k] = nearest / d.edge;
+  }
+  return d;
+}
+
+std::vector<FidelityMeter::FaceDistance> FidelityMeter::Overcut(const CrackFaces& crack) const {
+  std::vector<FaceDistance> overcut;
+  for (const std::array<Eigen::Vector3d, 3>& t : crack.triangles()) {
+    FaceDistance d = DistanceFromSweep(t);
+    if (IsOvercut(d)) overcut.push_back(std::move(d));
+  }
+  return overcut;
 }
 
 std::vector<std::pair<Eigen::Vector3d, double>> FidelityMeter::Uncovered(

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -99,6 +100,16 @@ class FidelityMeter {
   Fidelity Measure(const CrackFaces& crack) const;
   // The samples no crack face covers, and the local edge length at each (m).
   std::vector<std::pair<Eigen::Vector3d, double>> Uncovered(const CrackFaces& crack) const;
+  // A crack face's distance from the swept surface: at its corners and its middle, in local edge
+  // lengths (that of the tissue's tet holding the middle), each capped at twice the tolerance.
+  struct FaceDistance {
+    std::array<Eigen::Vector3d, 3> triangle;
+    std::array<double, 4> distance;  // corners 0-2, then the middle
+    double edge = 0;                 // the local edge length (m)
+    double farthest() const { return *std::max_element(distance.begin(), distance.end()); }
+  };
+  // The crack faces farther than the tolerance from the swept surface (Measure's overcut).
+  std::vector<FaceDistance> Overcut(const CrackFaces& crack) const;
   // The share of step k's samples that the crack covers (1 for a step that swept nothing
   // inside the tissue).
   double StepCoverage(const CrackFaces& crack, std::size_t k) const;
@@ -130,6 +141,10 @@ class FidelityMeter {
   std::size_t StepBegin(std::size_t k) const { return k == 0 ? 0 : step_end_[k - 1]; }
   // The tissue's tet holding `p` (or the nearest to holding it) and its mean edge length.
   double LocalEdgeLength(const Eigen::Vector3d& p) const;
+  FaceDistance DistanceFromSweep(const std::array<Eigen::Vector3d, 3>& t) const;
+  bool IsOvercut(const FaceDistance& d) const {
+    return d.farthest() > options_.tolerance * (1 + 1e-9);
+  }
   // Clips the triangle to the tissue's tets, keeps the pieces and samples them for the step.
   void AddTriangle(const std::array<Eigen::Vector3d, 3>& triangle, std::uint64_t seed);
   const std::vector<Sample>& Samples() const;

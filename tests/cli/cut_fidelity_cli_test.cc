@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
 #include <string>
 
 #include "absl/strings/str_cat.h"
@@ -48,7 +50,20 @@ TEST(KerfCutFidelity, CutReportsCoverageOfTheSweptSurface) {
       "path hand ", dir, "/paper.msh --seed 3 --duration 0.3 --out ", dir, "/hand.json"));
   ASSERT_EQ(path.exit_code, 0) << path.output;
   EXPECT_THAT(path.output, HasSubstr("hand path, seed 3: "));
-  const kerf::v1::CutReport hand = cut(dir + "/hand.json", " --check every --deferred");
+  const kerf::v1::CutReport hand =
+      cut(dir + "/hand.json", absl::StrCat(" --check every --deferred --uncovered ", dir,
+                                           "/uncovered.csv --overcut ", dir, "/overcut.csv"));
+  // One row per sample no crack face covers, and per overcut face, under a header.
+  const auto rows = [](const std::string& file) {
+    std::ifstream in(file);
+    std::string line;
+    int n = -1;
+    while (std::getline(in, line)) ++n;
+    return n;
+  };
+  EXPECT_EQ(rows(dir + "/uncovered.csv"),
+            std::lround((1 - hand.coverage()) * hand.swept_samples()));
+  EXPECT_EQ(rows(dir + "/overcut.csv"), static_cast<int>(hand.overcut_faces()));
   EXPECT_EQ(hand.check(), "every");
   EXPECT_GT(hand.swept_samples(), 0u);
   EXPECT_GT(hand.coverage(), 0);

@@ -2,14 +2,18 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <regex>
 #include <string>
 
+#include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "cli/kerf_command.h"
@@ -18,6 +22,7 @@
 #include "kerf/v1/live_cut_report.pb.h"
 #include "kerf/v1/mesh_report.pb.h"
 #include "kerf/v1/tradeoff_report.pb.h"
+#include "mesh/io/base64.h"
 #include "support/run_command.h"
 #include "support/shared_meshes.h"
 
@@ -33,6 +38,20 @@ kerf::v1::MeshReport ParseReport(const std::string& json) {
   kerf::v1::MeshReport report;
   EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(json, &report).ok()) << json;
   return report;
+}
+
+// The values of a binary Int64 array `name` of a VTU kerf wrote (base64 of a UInt64 byte count,
+// then the values); empty if it has none.
+std::vector<std::int64_t> Int64PointArray(const std::string& vtu, absl::string_view name) {
+  const std::size_t at = vtu.find(absl::StrCat("Name=\"", name, "\""));
+  if (at == std::string::npos) return {};
+  const std::size_t begin = vtu.find('>', at) + 1, end = vtu.find('<', begin);
+  const std::optional<std::vector<std::uint8_t>> bytes = kerf::mesh::internal::Base64Decode(
+      absl::StripAsciiWhitespace(absl::string_view(vtu).substr(begin, end - begin)));
+  if (!bytes || bytes->size() < 8) return {};
+  std::vector<std::int64_t> values((bytes->size() - 8) / 8);
+  std::memcpy(values.data(), bytes->data() + 8, values.size() * 8);
+  return values;
 }
 
 TEST(KerfCli, DemoPrintsThePaperLattice) {
@@ -181,6 +200,12 @@ TEST(KerfCli, CutWritesTheCutMeshWithItsSourcesAndReports) {
   for (const char* array :
        {"Name=\"rest_position\"", "Name=\"source_vertex\"", "Name=\"source_tet\""}) {
     EXPECT_THAT(text, HasSubstr(array));
+  }
+  // The lattice's 7 x 3 x 3 vertices keep their indices; those the cut made come after, -1.
+  const std::vector<std::int64_t> source = Int64PointArray(text, "source_vertex");
+  ASSERT_GT(source.size(), 63u);
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    EXPECT_EQ(source[i], i < 63 ? static_cast<std::int64_t>(i) : -1) << i;
   }
   const CliResult info = Kerf(absl::StrCat("mesh info ", dir, "/cut.vtu --json"));
   EXPECT_EQ(ParseReport(info.output).tets(), report.tets_after());

@@ -93,11 +93,19 @@ TEST(FidelityMeter, ACrackWhereTheBladeWentCoversItAll) {
 
 TEST(FidelityMeter, ACrackBesideTheBladeIsOvercutAndCoversNothing) {
   const FidelityMeter meter = MeterFor(SweepAt(2.5, 12));  // half a cube from the crack
-  const Fidelity f = meter.Measure(meter.FindCrack(PartedAt(2)));
+  const CrackFaces crack = meter.FindCrack(PartedAt(2));
+  const Fidelity f = meter.Measure(crack);
   EXPECT_EQ(f.coverage, 0);
   EXPECT_EQ(f.overcut_faces, 16u);
   // Half a cube in local edge lengths (each tet's mean edge is (3 + 2 sqrt 2 + sqrt 3) / 6).
-  EXPECT_NEAR(f.max_overcut, 0.5 * 6 / (3 + 2 * std::sqrt(2.0) + std::sqrt(3.0)), 1e-12);
+  const double half_cube = 0.5 * 6 / (3 + 2 * std::sqrt(2.0) + std::sqrt(3.0));
+  EXPECT_NEAR(f.max_overcut, half_cube, 1e-12);
+  const std::vector<FidelityMeter::FaceDistance> overcut = meter.Overcut(crack);
+  ASSERT_EQ(overcut.size(), f.overcut_faces);
+  for (const FidelityMeter::FaceDistance& face : overcut) {
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(face.triangle[k].x(), 2, 1e-12);
+    for (const double d : face.distance) EXPECT_NEAR(d, half_cube, 1e-12);  // the crack is flat
+  }
 }
 
 TEST(FidelityMeter, ACrackWithinAQuarterEdgeCovers) {
