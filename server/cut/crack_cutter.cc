@@ -310,6 +310,7 @@ Eigen::Vector3d CrackCutter::OpeningPointAt(const FaceKey& key,
 
 void CrackCutter::Join(const std::vector<TetId>& units) {
   for (const TetId t : units) {
+    met_at_.try_emplace(t, poses_);
     if (group_of_.try_emplace(t, t).second) {
       members_[t] = {t};
       group_since_[t] = poses_;
@@ -382,6 +383,7 @@ void CrackCutter::CloseUnitsTheBladeLeft() {
 void CrackCutter::CloseUnits(const std::vector<TetId>& units) {
   std::vector<TetId> pieces;
   for (const TetId u : units) {
+    met_at_.erase(u);
     const auto it = open_.find(u);
     if (it == open_.end()) continue;
     for (const TetId p : it->second.pieces) owner_.erase(p);

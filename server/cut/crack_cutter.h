@@ -58,6 +58,7 @@
 #include "absl/status/statusor.h"
 #include "cut/blade.h"
 #include "cut/blade_crossings.h"
+#include "cut/cone_apex.h"
 #include "cut/crack_split.h"
 #include "cut/crack_tolerances.h"
 #include "cut/cut_statistics.h"
@@ -450,6 +451,10 @@ class CrackCutter {
   // is withdrawn (withdrawn_at_) if that cone has no piece under kSliverAngleDeg, else
   // ConeApexWeights.
   Eigen::Vector4d ApexForGood(mesh::TetId unit, const TetCrack& crack) const;
+  // Whether a point (barycentric on `corners`, the unit's origins) lies within kApexReach of the
+  // unit's mean edge of the surface the blade swept since it first met the unit (met_at_); null
+  // for a unit the blade never met.
+  ApexNearPath NearPath(mesh::TetId unit, const mesh::TetVertices& corners) const;
   // Puts `pieces` (oriented on rest positions) in place of the unit's tets.
   // Keeps cut_tets and new_tets: the tissue's tets standing in two pieces or more, and those.
   void CountPieces(mesh::TetId source, std::size_t removed, std::size_t added);
@@ -544,6 +549,8 @@ class CrackCutter {
   std::size_t poses_ = 0;
   std::map<std::size_t, std::size_t> crack_faces_since_;
   absl::flat_hash_map<mesh::TetId, std::size_t> group_since_;
+  // The pose at which the blade first met each unit of a group, until the unit closes.
+  absl::flat_hash_map<mesh::TetId, std::size_t> met_at_;
   absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;
   absl::flat_hash_set<mesh::TetId> stood_;            // open units whose pieces stood this pose

@@ -164,9 +164,9 @@ bool CrackCutter::BisectionLeavesSliver(VertexId low, VertexId high, double frac
       if (corners[k] != low && corners[k] != high) continue;
       std::array<Eigen::Vector3d, 4> half = x;  // the half without corners[k]
       half[k] = point;
-      const std::array<double, 6> angles =
-          geometry::DihedralAnglesDeg(half[0], half[1], half[2], half[3]);
-      if (*std::min_element(angles.begin(), angles.end()) < kSliverAngleDeg) return true;
+      if (geometry::SmallestDihedralDeg(half[0], half[1], half[2], half[3]) < kSliverAngleDeg) {
+        return true;
+      }
     }
   }
   return false;

@@ -136,7 +136,8 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   // For good, a minimal split with slivers gives way to a cone that has fewer.
   std::optional<Eigen::Vector4d> cone_apex;
   if (blade == nullptr && !stood && split) {
-    cone_apex = ConeApexWithFewerSlivers(crack, *split, rest, kSliverAngleDeg);
+    cone_apex = ConeApexWithFewerSlivers(crack, *split, rest, kSliverAngleDeg,
+                                         NearPath(unit, crack.corners));
     if (cone_apex) split.reset();
   }
   const bool was_open = open_.contains(unit);
@@ -228,7 +229,25 @@ Eigen::Vector4d CrackCutter::ApexForGood(TetId unit, const TetCrack& crack) cons
       SmallestConeAngle(crack, rest, at->second) >= kSliverAngleDeg) {
     return at->second;  // where the blade is withdrawn: the crack ends there
   }
-  return ConeApexWeights(crack, rest);
+  return ConeApexWeights(crack, rest, NearPath(unit, crack.corners));
+}
+
+ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners) const {
+  const auto met = met_at_.find(unit);
+  if (met == met_at_.end()) return nullptr;
+  const std::size_t first = met->second > 0 ? met->second - 1 : 0;
+  double mean_edge = 0;
+  for (int a = 0; a < 4; ++a) {
+    for (int b = a + 1; b < 4; ++b) {
+      mean_edge +=
+          (mesh_->current_position(corners[a]) - mesh_->current_position(corners[b])).norm() / 6;
+    }
+  }
+  return [this, corners, first, reach = kApexReach * mean_edge](const Eigen::Vector4d& w) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) x += w[k] * mesh_->current_position(corners[k]);
+    return SweptNear(x, first, poses_, reach);
+  };
 }
 
 CrackSplit CrackCutter::PiecesAsSplit(TetId unit) const {

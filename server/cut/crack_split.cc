@@ -1,9 +1,8 @@
 #include "cut/crack_split.h"
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
+#include <vector>
 
 #include "base/check.h"
 #include "cut/tet_split.h"
@@ -282,169 +281,12 @@ std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
   return split;
 }
 
-Eigen::Vector4d PulledInside(const Eigen::Vector4d& w, const Eigen::Vector4d& towards) {
-  double pull = 0;
-  for (int k = 0; k < 4; ++k) {
-    if (w[k] < kApexMargin) pull = std::max(pull, (kApexMargin - w[k]) / (towards[k] - w[k]));
-  }
-  return w + std::min(pull, 1.0) * (towards - w);
-}
-
-namespace {
-
-// The smallest dihedral angle of the tet a-b-c-d, in degrees.
-double SmallestDihedral(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                        const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
-  const std::array<double, 6> angles = geometry::DihedralAnglesDeg(a, b, c, d);
-  return *std::min_element(angles.begin(), angles.end());
-}
-
-// The smallest dihedral angle of the cone from `apex` over the crack's face triangles (degrees).
-double SmallestConeAngle(const TetCrack& crack,
-                         const std::function<Eigen::Vector3d(VertexId)>& rest,
-                         const Eigen::Vector3d& apex) {
-  double smallest = 180;
-  for (const FaceSplit& f : crack.faces) {
-    for (const Triangle& t : f.triangles) {
-      smallest = std::min(smallest, SmallestDihedral(apex, rest(t[0]), rest(t[1]), rest(t[2])));
-    }
-  }
-  return smallest;
-}
-
-// The cone's pieces (from `apex` over the crack's face triangles) under `degrees`.
-int ConePiecesUnder(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
-                    const Eigen::Vector3d& apex, double degrees) {
-  int under = 0;
-  for (const FaceSplit& f : crack.faces) {
-    for (const Triangle& t : f.triangles) {
-      if (SmallestDihedral(apex, rest(t[0]), rest(t[1]), rest(t[2])) < degrees) ++under;
-    }
-  }
-  return under;
-}
-
-// The point at barycentric `weights` on the tet's corners (rest positions).
-Eigen::Vector3d PointAt(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
-                        const Eigen::Vector4d& weights) {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 4; ++k) point += weights[k] * rest(crack.corners[k]);
-  return point;
-}
-
-// Where a cone's apex is looked for: from `from` towards `to`, on the crack's plane if it has
-// one. Where the crack has no inner part the apex may be anywhere inside: from the tet's middle
-// towards the middle of its faces' points. Otherwise from the middle of the trace points towards
-// the tet's middle projected on the plane that fits them (its normal: their spread's least
-// direction), so the crack's faces stay where the traces are.
-struct ApexLine {
-  Eigen::Vector3d from, to;
-  std::optional<Eigen::Vector3d> normal;
-};
-
-ApexLine ApexLineOf(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
-                    const Eigen::Vector3d& centre) {
-  const auto middle_of = [&](const std::vector<VertexId>& points) {
-    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-    for (const VertexId v : points) middle += rest(v);
-    return Eigen::Vector3d(middle / static_cast<double>(points.size()));
-  };
-  ApexLine line{centre, centre, std::nullopt};
-  if (!HasInnerCrack(crack)) {
-    std::vector<VertexId> on_faces;
-    for (const auto& vertices : crack.face_vertices) {
-      for (const VertexId v : vertices) {
-        if (!mesh::TetHasVertex(crack.corners, v) && !Contains(on_faces, v)) on_faces.push_back(v);
-      }
-    }
-    if (!on_faces.empty()) line.to = middle_of(on_faces);
-    return line;
-  }
-  const std::vector<VertexId> points = TracePoints(crack);
-  line.from = line.to = middle_of(points);
-  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-  for (const VertexId v : points) {
-    spread += (rest(v) - line.from) * (rest(v) - line.from).transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
-  if (points.size() >= 3 && eigen.eigenvalues()[1] > 1e-6 * eigen.eigenvalues()[2]) {
-    line.normal = eigen.eigenvectors().col(0);
-    line.to = centre - line.normal->dot(centre - line.from) * *line.normal;
-  }
-  return line;
-}
-
-}  // namespace
-
-Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
-                                const std::function<Eigen::Vector3d(VertexId)>& rest) {
-  std::array<Eigen::Vector3d, 4> corner;
-  for (int k = 0; k < 4; ++k) corner[k] = rest(crack.corners[k]);
-  const auto weights_of = [&](const Eigen::Vector3d& p) {
-    return geometry::BarycentricWeights(corner[0], corner[1], corner[2], corner[3], p);
-  };
-  const auto apex_at = [&](const Eigen::Vector4d& w) {
-    Eigen::Vector3d apex = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 4; ++k) apex += w[k] * corner[k];
-    return apex;
-  };
-  const ApexLine line = ApexLineOf(crack, rest, apex_at(Eigen::Vector4d::Constant(0.25)));
-  const auto off_plane = [&](const Eigen::Vector3d& apex) {
-    return line.normal ? std::abs(line.normal->dot(apex - line.from)) : 0.0;
-  };
-  // A point is pulled inside towards `to` where that keeps the margin (on the crack's plane),
-  // else towards the tet's middle.
-  const Eigen::Vector4d target = weights_of(line.to);
-  const Eigen::Vector4d towards =
-      target.minCoeff() < kApexMargin ? Eigen::Vector4d::Constant(0.25) : target;
-  const auto pulled = [&](const Eigen::Vector3d& x) {
-    return PulledInside(weights_of(x), towards);
-  };
-  // The candidate whose cone's smallest dihedral angle is largest (the first of equals), among
-  // those pulled inside no farther off the crack's plane than the first.
-  Eigen::Vector4d best = pulled(line.from);
-  const double allowed_off = off_plane(apex_at(best)) * (1 + 1e-9) + 1e-12;
-  double best_angle = -1;
-  const auto consider = [&](const Eigen::Vector3d& x) {
-    const Eigen::Vector4d w = pulled(x);
-    const Eigen::Vector3d apex = apex_at(w);
-    if (off_plane(apex) > allowed_off) return;
-    const double angle = SmallestConeAngle(crack, rest, apex);
-    if (angle <= best_angle) return;
-    best_angle = angle;
-    best = w;
-  };
-  for (const double s : {0.0, 0.25, 0.5, 0.75, 1.0})
-    consider(line.from + s * (line.to - line.from));
-  // Then a pattern search around the best, along the crack's plane where there is one.
-  std::vector<Eigen::Vector3d> directions;
-  if (line.normal) {
-    const Eigen::Vector3d u = line.normal->unitOrthogonal(), v = line.normal->cross(u);
-    directions = {u, -u, v, -v};
-  } else if (!HasInnerCrack(crack)) {
-    directions = {Eigen::Vector3d::UnitX(),  -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-                  -Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),  -Eigen::Vector3d::UnitZ()};
-  }
-  double step = 0;
-  for (int k = 1; k < 4; ++k) step += (corner[k] - corner[0]).norm() / 12;
-  for (int round = 0; round < 3 && !directions.empty(); ++round, step /= 2) {
-    const Eigen::Vector3d around = apex_at(best);
-    for (const Eigen::Vector3d& d : directions) consider(around + step * d);
-  }
-  return best;
-}
-
-double SmallestConeAngle(const TetCrack& crack,
-                         const std::function<Eigen::Vector3d(VertexId)>& rest,
-                         const Eigen::Vector4d& weights) {
-  return SmallestConeAngle(crack, rest, PointAt(crack, rest, weights));
-}
-
 double SmallestAngle(const CrackSplit& split,
                      const std::function<Eigen::Vector3d(VertexId)>& rest) {
   double smallest = 180;
   for (const mesh::TetVertices& t : split.tets) {
-    smallest = std::min(smallest, SmallestDihedral(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])));
+    smallest = std::min(
+        smallest, geometry::SmallestDihedralDeg(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])));
   }
   return smallest;
 }
@@ -453,22 +295,10 @@ int PiecesUnder(const CrackSplit& split, const std::function<Eigen::Vector3d(Ver
                 double degrees) {
   int under = 0;
   for (const mesh::TetVertices& t : split.tets) {
-    if (SmallestDihedral(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])) < degrees) ++under;
+    if (geometry::SmallestDihedralDeg(rest(t[0]), rest(t[1]), rest(t[2]), rest(t[3])) < degrees)
+      ++under;
   }
   return under;
-}
-
-std::optional<Eigen::Vector4d> ConeApexWithFewerSlivers(
-    const TetCrack& crack, const CrackSplit& split,
-    const std::function<Eigen::Vector3d(VertexId)>& rest, double degrees) {
-  if (split.kind == CrackSplitKind::kWhole) return std::nullopt;
-  const int split_slivers = PiecesUnder(split, rest, degrees);
-  if (split_slivers == 0) return std::nullopt;
-  const Eigen::Vector4d apex = ConeApexWeights(crack, rest);
-  if (ConePiecesUnder(crack, rest, PointAt(crack, rest, apex), degrees) >= split_slivers) {
-    return std::nullopt;
-  }
-  return apex;
 }
 
 CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {

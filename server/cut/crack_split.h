@@ -77,40 +77,11 @@ int CrackFaceSides(const CrackSplit& split, const std::array<mesh::VertexId, 3>&
 bool OpenCrackFace(CrackSplit* split, const std::array<mesh::VertexId, 3>& face,
                    mesh::VertexId point);
 
-// The barycentric weights of a cone's apex for good. Where the crack has an inner part: of points
-// on the plane that fits its trace points (their middle, the tet's middle projected on that
-// plane, points between, then a short pattern search on the plane), each pulled inside along the
-// plane where it can be, the one whose cone's smallest dihedral angle is largest, so the crack's
-// faces stay on the swept surface and its pieces are as round as the faces' triangles allow.
-// Where it has none, the same search from the tet's middle, anywhere inside. About 20 cones are
-// tried. `rest` gives rest positions.
-Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
-                                const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
-
-// The smallest dihedral angle (degrees) of the cone with its apex at barycentric `weights`, and
-// of a split's tets, on rest positions.
-double SmallestConeAngle(const TetCrack& crack,
-                         const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
-                         const Eigen::Vector4d& weights);
+// The smallest dihedral angle (degrees) of a split's tets, and how many of them have one under
+// `degrees` (rest positions).
 double SmallestAngle(const CrackSplit& split,
                      const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
-// How many of a split's tets have a dihedral angle under `degrees` (rest positions).
 int PiecesUnder(const CrackSplit& split, const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
                 double degrees);
-
-// The apex (barycentric) of the cone to split the tet by for good instead of `split`, a split
-// without a new point: where `split` has pieces under `degrees` and the best cone
-// (ConeApexWeights) has fewer. Its face triangles are the same, so the tets beside it agree.
-// nullopt otherwise (a whole tet, no piece under `degrees`, or no cone with fewer).
-std::optional<Eigen::Vector4d> ConeApexWithFewerSlivers(
-    const TetCrack& crack, const CrackSplit& split,
-    const std::function<Eigen::Vector3d(mesh::VertexId)>& rest, double degrees);
-
-// A cone's apex is kept at least this far (barycentric) from the tet's faces.
-inline constexpr double kApexMargin = 0.15;
-// Barycentric weights (summing to 1) moved towards `towards` (weights each at least kApexMargin;
-// by default the tet's middle) until each is at least kApexMargin.
-Eigen::Vector4d PulledInside(const Eigen::Vector4d& weights,
-                             const Eigen::Vector4d& towards = Eigen::Vector4d::Constant(0.25));
 
 }  // namespace kerf::cut

@@ -11,9 +11,8 @@ double SmallestFanAngleDeg(const std::array<Eigen::Vector3d, 3>& face, const Eig
   double smallest = 180;
   for (const Eigen::Vector3d& apex : apexes) {
     for (int k = 0; k < 3; ++k) {
-      const std::array<double, 6> angles =
-          geometry::DihedralAnglesDeg(apex, point, face[k], face[(k + 1) % 3]);
-      smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
+      smallest = std::min(smallest,
+                          geometry::SmallestDihedralDeg(apex, point, face[k], face[(k + 1) % 3]));
     }
   }
   return smallest;

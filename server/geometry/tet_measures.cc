@@ -103,4 +103,10 @@ Eigen::Vector4d BarycentricWeights(const Vector3d& a, const Vector3d& b, const V
   return {1 - w.sum(), w.x(), w.y(), w.z()};
 }
 
+double SmallestDihedralDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
+  const std::array<double, 6> angles = DihedralAnglesDeg(a, b, c, d);
+  return *std::min_element(angles.begin(), angles.end());
+}
+
 }  // namespace kerf::geometry

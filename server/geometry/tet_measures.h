@@ -29,6 +29,9 @@ Eigen::Vector4d BarycentricWeights(const Eigen::Vector3d& a, const Eigen::Vector
 // A degenerate (flat) tet has angles of 0 or 180; a zero-area face gives NaN-free 0.
 std::array<double, 6> DihedralAnglesDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                         const Eigen::Vector3d& c, const Eigen::Vector3d& d);
+// The smallest of them.
+double SmallestDihedralDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& c, const Eigen::Vector3d& d);
 
 // The smallest of the four heights (corner to opposite face's plane): three times the volume
 // over the largest face's area; 0 for a flat tet. The explicit time step scales with it.

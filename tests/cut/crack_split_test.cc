@@ -10,6 +10,8 @@
 #include <random>
 #include <set>
 
+#include "cut/cone_apex.h"
+#include "cut/one_tet.h"
 #include "geometry/tet_measures.h"
 #include "mesh/tet_mesh.h"
 
@@ -18,84 +20,6 @@ namespace {
 
 using mesh::VertexId;
 using Triangle = std::array<VertexId, 3>;
-
-// One tet and the points a crack may leave on it, with positions, for checking splits.
-class OneTet {
- public:
-  OneTet() {
-    corners_ = {VertexId(0), VertexId(1), VertexId(2), VertexId(3)};
-    at_ = {{0, {0, 0, 0}}, {1, {1, 0, 0}}, {2, {0.2, 1, 0}}, {3, {0.3, 0.3, 1}}};
-  }
-  Eigen::Vector3d Rest(VertexId v) const { return at_.at(static_cast<int>(v)); }
-  std::function<Eigen::Vector3d(VertexId)> RestOf() const {
-    return [this](VertexId v) { return Rest(v); };
-  }
-
-  // A point at `t` along the edge between corners i and j (shared by the faces at it).
-  void CutEdge(int i, int j, double t) {
-    const VertexId v = Add((1 - t) * Rest(corners_[i]) + t * Rest(corners_[j]));
-    edge_points_[{std::min(i, j), std::max(i, j)}] = v;
-  }
-  // A point inside face k at the given weights on its corners (kTetFaces order).
-  void PointInFace(int k, Eigen::Vector3d w) {
-    const auto& f = mesh::kTetFaces[k];
-    face_points_[k] = Add(w[0] * Rest(corners_[f[0]]) + w[1] * Rest(corners_[f[1]]) +
-                          w[2] * Rest(corners_[f[2]]));
-  }
-  void CornerOnCrack(int i) { on_crack_[i] = true; }
-
-  TetCrack Crack() {
-    std::array<FacePoints, 4> points;
-    for (int k = 0; k < 4; ++k) {
-      const auto& f = mesh::kTetFaces[k];
-      FacePoints& p = points[k];
-      for (int j = 0; j < 3; ++j) {
-        const int a = f[j], b = f[(j + 1) % 3];
-        if (const auto it = edge_points_.find({std::min(a, b), std::max(a, b)});
-            it != edge_points_.end()) {
-          p.on_edge[j] = it->second;
-        }
-        p.corner_on_crack[j] = on_crack_[f[j]];
-      }
-      if (face_points_.contains(k)) p.inside = face_points_[k];
-      p.corners = {corners_[f[0]], corners_[f[1]], corners_[f[2]]};
-      if (NeedsHub(p)) {
-        Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-        for (int j = 0; j < 3; ++j) middle += Rest(*p.on_edge[j]) / 3;
-        p.inside = Add(middle);
-      }
-    }
-    return MakeTetCrack(corners_, points);
-  }
-  VertexId Apex(const Eigen::Vector4d& w) {
-    Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 4; ++k) x += w[k] * Rest(corners_[k]);
-    return Add(x);
-  }
-  // The barycentric weights of `x` on the corners.
-  Eigen::Vector4d Weights(const Eigen::Vector3d& x) const {
-    Eigen::Matrix3d frame;
-    for (int k = 0; k < 3; ++k) frame.col(k) = Rest(corners_[k + 1]) - Rest(corners_[0]);
-    const Eigen::Vector3d w = frame.lu().solve(x - Rest(corners_[0]));
-    return {1 - w.sum(), w.x(), w.y(), w.z()};
-  }
-  double Volume(const mesh::TetVertices& t) const {
-    return geometry::SignedVolume(Rest(t[0]), Rest(t[1]), Rest(t[2]), Rest(t[3]));
-  }
-  const mesh::TetVertices& corners() const { return corners_; }
-
- private:
-  VertexId Add(const Eigen::Vector3d& x) {
-    const int id = 100 + static_cast<int>(at_.size());
-    at_[id] = x;
-    return VertexId(id);
-  }
-  mesh::TetVertices corners_;
-  std::map<int, Eigen::Vector3d> at_;
-  std::map<std::pair<int, int>, VertexId> edge_points_;
-  std::map<int, VertexId> face_points_;
-  std::array<bool, 4> on_crack_ = {false, false, false, false};
-};
 
 Triangle Sorted(Triangle t) {
   std::sort(t.begin(), t.end());
@@ -385,65 +309,6 @@ TEST(CrackSplit, ACornerOnTheCrackCutOffIsNotWalledIn) {
   ExpectNoPieceWalledIn(crack, *split);
 }
 
-// The smallest dihedral angle of the cone from the apex at `weights` over the faces' triangles.
-double SmallestConeAngle(OneTet& tet, const TetCrack& crack, const Eigen::Vector4d& weights) {
-  const CrackSplit split = SplitAsCone(crack, tet.Apex(weights));
-  double smallest = 180;
-  for (const mesh::TetVertices& t : split.tets) {
-    const auto angles =
-        geometry::DihedralAnglesDeg(tet.Rest(t[0]), tet.Rest(t[1]), tet.Rest(t[2]), tet.Rest(t[3]));
-    smallest = std::min(smallest, *std::min_element(angles.begin(), angles.end()));
-  }
-  return smallest;
-}
-
-// Two opposite edges cut, no crack inside: the tet is split only to match its faces, from an
-// apex anywhere inside; the one chosen makes rounder pieces than the middle.
-TEST(CrackSplit, AConeOnlyMatchingItsFacesHasItsRoundestApex) {
-  OneTet tet;
-  tet.CutEdge(0, 1, 0.3);
-  tet.CutEdge(2, 3, 0.5);
-  const TetCrack crack = tet.Crack();
-  const auto rest = tet.RestOf();
-  ASSERT_FALSE(HasInnerCrack(crack));
-  ASSERT_FALSE(SplitWithoutApex(crack, rest));
-  const Eigen::Vector4d chosen = ConeApexWeights(crack, rest);
-  EXPECT_GE(chosen.minCoeff(), kApexMargin - 1e-12);
-  EXPECT_GT(SmallestConeAngle(tet, crack, chosen),
-            SmallestConeAngle(tet, crack, Eigen::Vector4d::Constant(0.25)) + 1);
-}
-
-// Corner 3 cut off by a tilted plane: a crack across the tet.
-OneTet CornerThreeCutOff() {
-  OneTet tet;
-  tet.CutEdge(3, 0, 0.7);
-  tet.CutEdge(3, 1, 0.5);
-  tet.CutEdge(3, 2, 0.6);
-  return tet;
-}
-
-// A crack across the tet (corner 3 cut off by a tilted plane): the apex stays on the crack's
-// plane, inside by the margin, and its cone is no flatter than the one from the middle of the
-// trace points.
-TEST(CrackSplit, TheConesApexStaysOnTheCrack) {
-  OneTet tet = CornerThreeCutOff();
-  const TetCrack crack = tet.Crack();
-  ASSERT_TRUE(HasInnerCrack(crack));
-  const Eigen::Vector4d chosen = ConeApexWeights(crack, tet.RestOf());
-  EXPECT_NEAR(chosen.sum(), 1, 1e-12);
-  EXPECT_GE(chosen.minCoeff(), kApexMargin - 1e-12);
-  const std::vector<VertexId> points = TracePoints(crack);
-  ASSERT_EQ(points.size(), 3u);
-  Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-  for (const VertexId v : points) middle += tet.Rest(v) / 3;
-  const Eigen::Vector3d normal = (tet.Rest(points[1]) - tet.Rest(points[0]))
-                                     .cross(tet.Rest(points[2]) - tet.Rest(points[0]))
-                                     .normalized();
-  EXPECT_NEAR(normal.dot(tet.Rest(tet.Apex(chosen)) - middle), 0, 1e-12);
-  EXPECT_GE(SmallestConeAngle(tet, crack, chosen),
-            SmallestConeAngle(tet, crack, PulledInside(tet.Weights(middle))));
-}
-
 // A crack face opened at its middle: the pieces still tile the tet, the face is three crack
 // faces through the new point, and the point's pieces, joined through faces off the crack, are
 // two sides (one on each side of the face), so parting the point opens the face.
@@ -529,72 +394,6 @@ TEST(CrackSplit, ACrackFaceInAFaceOfTheTetOpensItsOneTet) {
   for (const Triangle& f : split->crack_faces) {
     EXPECT_NE(std::find(f.begin(), f.end(), point), f.end());
   }
-}
-
-// A corner cut whose third point lies near the corner: the minimal split (case i) has a sliver,
-// and a cone over the same face triangles has none (what CrackCutter splits for good instead).
-TEST(CrackSplit, ACornerCutNearTheCornerHasASliverThatAConeAvoids) {
-  OneTet tet;
-  tet.CutEdge(3, 0, 0.7);
-  tet.CutEdge(3, 1, 0.7);
-  tet.CutEdge(3, 2, 0.16);
-  const TetCrack crack = tet.Crack();
-  const std::optional<CrackSplit> minimal = SplitWithoutApex(crack, tet.RestOf());
-  ASSERT_TRUE(minimal.has_value());
-  EXPECT_EQ(minimal->kind, CrackSplitKind::kMinimal);
-  EXPECT_LT(SmallestAngle(*minimal, tet.RestOf()), 5);
-  const Eigen::Vector4d apex = ConeApexWeights(crack, tet.RestOf());
-  const double cone = SmallestConeAngle(crack, tet.RestOf(), apex);
-  EXPECT_GE(cone, 5);
-  const CrackSplit split = SplitAsCone(crack, tet.Apex(apex));
-  EXPECT_NEAR(SmallestAngle(split, tet.RestOf()), cone, 1e-9);
-  const std::optional<Eigen::Vector4d> chosen =
-      ConeApexWithFewerSlivers(crack, *minimal, tet.RestOf(), 5);
-  ASSERT_TRUE(chosen.has_value());
-  EXPECT_EQ(*chosen, apex);
-  // Cut farther from the corner, the minimal split has no sliver and stays.
-  OneTet round;
-  round.CutEdge(3, 0, 0.5);
-  round.CutEdge(3, 1, 0.5);
-  round.CutEdge(3, 2, 0.5);
-  const TetCrack round_crack = round.Crack();
-  const std::optional<CrackSplit> round_split = SplitWithoutApex(round_crack, round.RestOf());
-  ASSERT_TRUE(round_split.has_value());
-  EXPECT_FALSE(ConeApexWithFewerSlivers(round_crack, *round_split, round.RestOf(), 5).has_value());
-}
-
-// A quad cut with three of its points near corner 0: the minimal split (case ii) has two pieces
-// under 5 degrees. The best cone over the same face triangles still has one, yet fewer, so it is
-// taken; with the fourth point farther along its edge the cone has as many, and the minimal
-// split stays.
-TEST(CrackSplit, AConeWithFewerSliversReplacesAMinimalSplit) {
-  const auto quad = [](double last) {
-    auto tet = std::make_unique<OneTet>();
-    tet->CutEdge(0, 2, 0.06);
-    tet->CutEdge(0, 3, 0.06);
-    tet->CutEdge(1, 2, 0.06);
-    tet->CutEdge(1, 3, last);
-    return tet;
-  };
-  const std::unique_ptr<OneTet> fewer = quad(0.4);
-  const TetCrack crack = fewer->Crack();
-  const std::optional<CrackSplit> minimal = SplitWithoutApex(crack, fewer->RestOf());
-  ASSERT_TRUE(minimal.has_value());
-  EXPECT_EQ(minimal->kind, CrackSplitKind::kMinimal);
-  EXPECT_EQ(PiecesUnder(*minimal, fewer->RestOf(), 5), 2);
-  const std::optional<Eigen::Vector4d> apex =
-      ConeApexWithFewerSlivers(crack, *minimal, fewer->RestOf(), 5);
-  ASSERT_TRUE(apex.has_value());
-  const CrackSplit cone = SplitAsCone(crack, fewer->Apex(*apex));
-  EXPECT_EQ(PiecesUnder(cone, fewer->RestOf(), 5), 1);
-  EXPECT_GT(SmallestAngle(cone, fewer->RestOf()), SmallestAngle(*minimal, fewer->RestOf()));
-
-  const std::unique_ptr<OneTet> as_many = quad(0.5);
-  const TetCrack other = as_many->Crack();
-  const std::optional<CrackSplit> stays = SplitWithoutApex(other, as_many->RestOf());
-  ASSERT_TRUE(stays.has_value());
-  EXPECT_EQ(PiecesUnder(*stays, as_many->RestOf(), 5), 2);
-  EXPECT_FALSE(ConeApexWithFewerSlivers(other, *stays, as_many->RestOf(), 5).has_value());
 }
 
 }  // namespace

@@ -1,0 +1,233 @@
+#include "cut/cone_apex.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "geometry/tet_measures.h"
+#include "mesh/tet_mesh.h"
+
+namespace kerf::cut {
+
+using mesh::VertexId;
+using Triangle = std::array<VertexId, 3>;
+
+Eigen::Vector4d PulledInside(const Eigen::Vector4d& w, const Eigen::Vector4d& towards) {
+  double pull = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (w[k] < kApexMargin) pull = std::max(pull, (kApexMargin - w[k]) / (towards[k] - w[k]));
+  }
+  return w + std::min(pull, 1.0) * (towards - w);
+}
+
+namespace {
+
+// The smallest dihedral angle of the cone from `apex` over the crack's face triangles (degrees).
+double SmallestConeAngle(const TetCrack& crack,
+                         const std::function<Eigen::Vector3d(VertexId)>& rest,
+                         const Eigen::Vector3d& apex) {
+  double smallest = 180;
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.triangles) {
+      smallest = std::min(smallest,
+                          geometry::SmallestDihedralDeg(apex, rest(t[0]), rest(t[1]), rest(t[2])));
+    }
+  }
+  return smallest;
+}
+
+// The cone's pieces (from `apex` over the crack's face triangles) under `degrees`.
+int ConePiecesUnder(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+                    const Eigen::Vector3d& apex, double degrees) {
+  int under = 0;
+  for (const FaceSplit& f : crack.faces) {
+    for (const Triangle& t : f.triangles) {
+      if (geometry::SmallestDihedralDeg(apex, rest(t[0]), rest(t[1]), rest(t[2])) < degrees)
+        ++under;
+    }
+  }
+  return under;
+}
+
+// The point at barycentric `weights` on the tet's corners (rest positions).
+Eigen::Vector3d PointAt(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+                        const Eigen::Vector4d& weights) {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) point += weights[k] * rest(crack.corners[k]);
+  return point;
+}
+
+// Where a cone's apex is looked for: from `from` towards `to`, on the crack's plane if it has
+// one. Where the crack has no inner part the apex may be anywhere inside: from the tet's middle
+// towards the middle of its faces' points. Otherwise from the middle of the trace points towards
+// the tet's middle projected on the plane that fits them (its normal: their spread's least
+// direction), so the crack's faces stay where the traces are.
+struct ApexLine {
+  Eigen::Vector3d from, to;
+  std::optional<Eigen::Vector3d> normal;
+};
+
+ApexLine ApexLineOf(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+                    const Eigen::Vector3d& centre) {
+  const auto middle_of = [&](const std::vector<VertexId>& points) {
+    Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+    for (const VertexId v : points) middle += rest(v);
+    return Eigen::Vector3d(middle / static_cast<double>(points.size()));
+  };
+  ApexLine line{centre, centre, std::nullopt};
+  if (!HasInnerCrack(crack)) {
+    std::vector<VertexId> on_faces;
+    for (const auto& vertices : crack.face_vertices) {
+      for (const VertexId v : vertices) {
+        if (!mesh::TetHasVertex(crack.corners, v) &&
+            std::find(on_faces.begin(), on_faces.end(), v) == on_faces.end())
+          on_faces.push_back(v);
+      }
+    }
+    if (!on_faces.empty()) line.to = middle_of(on_faces);
+    return line;
+  }
+  const std::vector<VertexId> points = TracePoints(crack);
+  line.from = line.to = middle_of(points);
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (const VertexId v : points) {
+    spread += (rest(v) - line.from) * (rest(v) - line.from).transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
+  if (points.size() >= 3 && eigen.eigenvalues()[1] > 1e-6 * eigen.eigenvalues()[2]) {
+    line.normal = eigen.eigenvectors().col(0);
+    line.to = centre - line.normal->dot(centre - line.from) * *line.normal;
+  }
+  return line;
+}
+
+// The search for a cone's apex over one tet's crack (ConeApexWeights).
+class ApexSearch {
+ public:
+  ApexSearch(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+             const ApexNearPath& near_path)
+      : crack_(crack), rest_(rest), near_path_(near_path) {
+    for (int k = 0; k < 4; ++k) corner_[k] = rest(crack.corners[k]);
+    double mean_edge = 0;
+    for (int a = 0; a < 4; ++a) {
+      for (int b = a + 1; b < 4; ++b) mean_edge += (corner_[a] - corner_[b]).norm() / 6;
+    }
+    reach_ = kApexReach * mean_edge;
+    line_ = ApexLineOf(crack, rest, At(Eigen::Vector4d::Constant(0.25)));
+  }
+
+  // Candidates are pulled inside by kApexMargin: towards `to` where that keeps the margin (on the
+  // crack's plane), else towards the tet's middle. Of the candidates, the one
+  // whose cone's smallest dihedral angle is largest (the first of equals) among those near the
+  // path (Near); and the best among those no farther off the plane than the first.
+  struct Best {
+    std::optional<Eigen::Vector4d> near;
+    Eigen::Vector4d off_plane_no_farther;
+  };
+  Best Run() const {
+    const Eigen::Vector4d target = WeightsOf(line_.to);
+    const Eigen::Vector4d towards =
+        target.minCoeff() < kApexMargin ? Eigen::Vector4d::Constant(0.25) : target;
+    const auto pulled = [&](const Eigen::Vector3d& x) {
+      return PulledInside(WeightsOf(x), towards);
+    };
+    Eigen::Vector4d best = pulled(line_.from), best_near = best;
+    const double allowed_off = OffPlane(At(best)) * (1 + 1e-9) + 1e-12;
+    double best_angle = -1, best_near_angle = -1;
+    const auto consider = [&](const Eigen::Vector3d& x) {
+      const Eigen::Vector4d w = pulled(x);
+      const double off = OffPlane(At(w));
+      if (off > std::max(allowed_off, reach_)) return;
+      const double angle = SmallestConeAngle(crack_, rest_, At(w));
+      if (angle > best_near_angle && Near(w)) {
+        best_near_angle = angle;
+        best_near = w;
+      }
+      if (off <= allowed_off && angle > best_angle) {
+        best_angle = angle;
+        best = w;
+      }
+    };
+    for (const double s : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+      consider(line_.from + s * (line_.to - line_.from));
+    }
+    // Then a pattern search around the best, along the crack's plane where there is one.
+    const std::vector<Eigen::Vector3d> directions = SearchDirections();
+    double step = 0;
+    for (int k = 1; k < 4; ++k) step += (corner_[k] - corner_[0]).norm() / 12;
+    for (int round = 0; round < 3 && !directions.empty(); ++round, step /= 2) {
+      const Eigen::Vector3d around = At(best_near_angle >= 0 ? best_near : best);
+      for (const Eigen::Vector3d& d : directions) consider(around + step * d);
+    }
+    return {best_near_angle >= 0 ? std::optional(best_near) : std::nullopt, best};
+  }
+
+ private:
+  Eigen::Vector3d At(const Eigen::Vector4d& w) const {
+    Eigen::Vector3d apex = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) apex += w[k] * corner_[k];
+    return apex;
+  }
+  Eigen::Vector4d WeightsOf(const Eigen::Vector3d& p) const {
+    return geometry::BarycentricWeights(corner_[0], corner_[1], corner_[2], corner_[3], p);
+  }
+  double OffPlane(const Eigen::Vector3d& apex) const {
+    return line_.normal ? std::abs(line_.normal->dot(apex - line_.from)) : 0.0;
+  }
+  // Near the blade's path where it is known, else within the reach of the crack's plane.
+  bool Near(const Eigen::Vector4d& w) const {
+    return near_path_ ? near_path_(w) : OffPlane(At(w)) <= reach_;
+  }
+  std::vector<Eigen::Vector3d> SearchDirections() const {
+    if (line_.normal) {
+      const Eigen::Vector3d u = line_.normal->unitOrthogonal(), v = line_.normal->cross(u);
+      return {u, -u, v, -v};
+    }
+    if (HasInnerCrack(crack_)) return {};
+    return {Eigen::Vector3d::UnitX(),  -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+            -Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),  -Eigen::Vector3d::UnitZ()};
+  }
+
+  const TetCrack& crack_;
+  const std::function<Eigen::Vector3d(VertexId)>& rest_;
+  const ApexNearPath& near_path_;
+  std::array<Eigen::Vector3d, 4> corner_;
+  double reach_ = 0;
+  ApexLine line_;
+};
+
+}  // namespace
+
+Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
+                                const std::function<Eigen::Vector3d(VertexId)>& rest,
+                                const ApexNearPath& near_path) {
+  const ApexSearch search(crack, rest, near_path);
+  const ApexSearch::Best best = search.Run();
+  return best.near ? *best.near : best.off_plane_no_farther;
+}
+
+double SmallestConeAngle(const TetCrack& crack,
+                         const std::function<Eigen::Vector3d(VertexId)>& rest,
+                         const Eigen::Vector4d& weights) {
+  return SmallestConeAngle(crack, rest, PointAt(crack, rest, weights));
+}
+
+std::optional<Eigen::Vector4d> ConeApexWithFewerSlivers(
+    const TetCrack& crack, const CrackSplit& split,
+    const std::function<Eigen::Vector3d(VertexId)>& rest, double degrees,
+    const ApexNearPath& near_path) {
+  if (split.kind == CrackSplitKind::kWhole) return std::nullopt;
+  const int split_slivers = PiecesUnder(split, rest, degrees);
+  if (split_slivers == 0) return std::nullopt;
+  const Eigen::Vector4d apex = ConeApexWeights(crack, rest, near_path);
+  if (ConePiecesUnder(crack, rest, PointAt(crack, rest, apex), degrees) >= split_slivers) {
+    return std::nullopt;
+  }
+  return apex;
+}
+
+}  // namespace kerf::cut
