@@ -13,9 +13,6 @@
 
 namespace kerf::cut {
 
-using mesh::VertexId;
-using Triangle = std::array<VertexId, 3>;
-
 Eigen::Vector4d PulledInside(const Eigen::Vector4d& w, const Eigen::Vector4d& towards) {
   double pull = 0;
   for (int k = 0; k < 4; ++k) {
@@ -28,11 +25,11 @@ namespace {
 
 // The smallest dihedral angle of the cone from `apex` over the crack's face triangles (degrees).
 double SmallestConeAngle(const TetCrack& crack,
-                         const std::function<Eigen::Vector3d(VertexId)>& rest,
+                         const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
                          const Eigen::Vector3d& apex) {
   double smallest = 180;
   for (const FaceSplit& f : crack.faces) {
-    for (const Triangle& t : f.triangles) {
+    for (const auto& t : f.triangles) {
       smallest = std::min(smallest,
                           geometry::SmallestDihedralDeg(apex, rest(t[0]), rest(t[1]), rest(t[2])));
     }
@@ -41,11 +38,12 @@ double SmallestConeAngle(const TetCrack& crack,
 }
 
 // The cone's pieces (from `apex` over the crack's face triangles) under `degrees`.
-int ConePiecesUnder(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+int ConePiecesUnder(const TetCrack& crack,
+                    const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
                     const Eigen::Vector3d& apex, double degrees) {
   int under = 0;
   for (const FaceSplit& f : crack.faces) {
-    for (const Triangle& t : f.triangles) {
+    for (const auto& t : f.triangles) {
       if (geometry::SmallestDihedralDeg(apex, rest(t[0]), rest(t[1]), rest(t[2])) < degrees)
         ++under;
     }
@@ -54,7 +52,8 @@ int ConePiecesUnder(const TetCrack& crack, const std::function<Eigen::Vector3d(V
 }
 
 // The point at barycentric `weights` on the tet's corners (rest positions).
-Eigen::Vector3d PointAt(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+Eigen::Vector3d PointAt(const TetCrack& crack,
+                        const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
                         const Eigen::Vector4d& weights) {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   for (int k = 0; k < 4; ++k) point += weights[k] * rest(crack.corners[k]);
@@ -71,18 +70,19 @@ struct ApexLine {
   std::optional<Eigen::Vector3d> normal;
 };
 
-ApexLine ApexLineOf(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+ApexLine ApexLineOf(const TetCrack& crack,
+                    const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
                     const Eigen::Vector3d& centre) {
-  const auto middle_of = [&](const std::vector<VertexId>& points) {
+  const auto middle_of = [&](const std::vector<mesh::VertexId>& points) {
     Eigen::Vector3d middle = Eigen::Vector3d::Zero();
-    for (const VertexId v : points) middle += rest(v);
+    for (const mesh::VertexId v : points) middle += rest(v);
     return Eigen::Vector3d(middle / static_cast<double>(points.size()));
   };
   ApexLine line{centre, centre, std::nullopt};
   if (!HasInnerCrack(crack)) {
-    std::vector<VertexId> on_faces;
+    std::vector<mesh::VertexId> on_faces;
     for (const auto& vertices : crack.face_vertices) {
-      for (const VertexId v : vertices) {
+      for (const mesh::VertexId v : vertices) {
         if (!mesh::TetHasVertex(crack.corners, v) &&
             std::find(on_faces.begin(), on_faces.end(), v) == on_faces.end())
           on_faces.push_back(v);
@@ -91,10 +91,10 @@ ApexLine ApexLineOf(const TetCrack& crack, const std::function<Eigen::Vector3d(V
     if (!on_faces.empty()) line.to = middle_of(on_faces);
     return line;
   }
-  const std::vector<VertexId> points = TracePoints(crack);
+  const std::vector<mesh::VertexId> points = TracePoints(crack);
   line.from = line.to = middle_of(points);
   Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-  for (const VertexId v : points) {
+  for (const mesh::VertexId v : points) {
     spread += (rest(v) - line.from) * (rest(v) - line.from).transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
@@ -108,7 +108,7 @@ ApexLine ApexLineOf(const TetCrack& crack, const std::function<Eigen::Vector3d(V
 // The search for a cone's apex over one tet's crack (ConeApexWeights).
 class ApexSearch {
  public:
-  ApexSearch(const TetCrack& crack, const std::function<Eigen::Vector3d(VertexId)>& rest,
+  ApexSearch(const TetCrack& crack, const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
              const ApexNearPath& near_path)
       : crack_(crack), rest_(rest), near_path_(near_path) {
     for (int k = 0; k < 4; ++k) corner_[k] = rest(crack.corners[k]);
@@ -193,7 +193,7 @@ class ApexSearch {
   }
 
   const TetCrack& crack_;
-  const std::function<Eigen::Vector3d(VertexId)>& rest_;
+  const std::function<Eigen::Vector3d(mesh::VertexId)>& rest_;
   const ApexNearPath& near_path_;
   std::array<Eigen::Vector3d, 4> corner_;
   double reach_ = 0;
@@ -203,7 +203,7 @@ class ApexSearch {
 }  // namespace
 
 Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
-                                const std::function<Eigen::Vector3d(VertexId)>& rest,
+                                const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
                                 const ApexNearPath& near_path) {
   const ApexSearch search(crack, rest, near_path);
   const ApexSearch::Best best = search.Run();
@@ -211,14 +211,14 @@ Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
 }
 
 double SmallestConeAngle(const TetCrack& crack,
-                         const std::function<Eigen::Vector3d(VertexId)>& rest,
+                         const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
                          const Eigen::Vector4d& weights) {
   return SmallestConeAngle(crack, rest, PointAt(crack, rest, weights));
 }
 
 std::optional<Eigen::Vector4d> ConeApexWithFewerSlivers(
     const TetCrack& crack, const CrackSplit& split,
-    const std::function<Eigen::Vector3d(VertexId)>& rest, double degrees,
+    const std::function<Eigen::Vector3d(mesh::VertexId)>& rest, double degrees,
     const ApexNearPath& near_path) {
   if (split.kind == CrackSplitKind::kWhole) return std::nullopt;
   const int split_slivers = PiecesUnder(split, rest, degrees);
