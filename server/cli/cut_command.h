@@ -1,7 +1,6 @@
 // kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end]
-// [--uncovered OUT.csv] [--overcut OUT.csv] [--min-temporary-height F] [--snap F] [--trace
-// OUT.jsonl]
-// [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a
+// [--uncovered OUT.csv] [--overcut OUT.csv] [--min-temporary-height F] [--snap F]
+// [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]: applies a blade path to a mesh file or a
 // scene (its initial state: rest, or the static solution of a STATIC scene) and writes the result.
 // OUT.vtu has the current positions as points, the point arrays rest_position and source_vertex
 // (the original vertex id, -1 for a vertex the cut made) and the cell array source_tet (the

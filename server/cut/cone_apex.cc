@@ -44,8 +44,9 @@ int ConePiecesUnder(const TetCrack& crack,
   int under = 0;
   for (const FaceSplit& f : crack.faces) {
     for (const auto& t : f.triangles) {
-      if (geometry::SmallestDihedralDeg(apex, rest(t[0]), rest(t[1]), rest(t[2])) < degrees)
+      if (geometry::SmallestDihedralDeg(apex, rest(t[0]), rest(t[1]), rest(t[2])) < degrees) {
         ++under;
+      }
     }
   }
   return under;
@@ -84,8 +85,9 @@ ApexLine ApexLineOf(const TetCrack& crack,
     for (const auto& vertices : crack.face_vertices) {
       for (const mesh::VertexId v : vertices) {
         if (!mesh::TetHasVertex(crack.corners, v) &&
-            std::find(on_faces.begin(), on_faces.end(), v) == on_faces.end())
+            std::find(on_faces.begin(), on_faces.end(), v) == on_faces.end()) {
           on_faces.push_back(v);
+        }
       }
     }
     if (!on_faces.empty()) line.to = middle_of(on_faces);
@@ -112,11 +114,7 @@ class ApexSearch {
              const ApexNearPath& near_path)
       : crack_(crack), rest_(rest), near_path_(near_path) {
     for (int k = 0; k < 4; ++k) corner_[k] = rest(crack.corners[k]);
-    double mean_edge = 0;
-    for (int a = 0; a < 4; ++a) {
-      for (int b = a + 1; b < 4; ++b) mean_edge += (corner_[a] - corner_[b]).norm() / 6;
-    }
-    reach_ = kApexReach * mean_edge;
+    reach_ = kApexReach * geometry::MeanEdgeLength(corner_[0], corner_[1], corner_[2], corner_[3]);
     line_ = ApexLineOf(crack, rest, At(Eigen::Vector4d::Constant(0.25)));
   }
 

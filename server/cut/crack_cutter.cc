@@ -310,8 +310,8 @@ Eigen::Vector3d CrackCutter::OpeningPointAt(const FaceKey& key,
 
 void CrackCutter::Join(const std::vector<TetId>& units) {
   for (const TetId t : units) {
-    met_at_.try_emplace(t, poses_);
     if (group_of_.try_emplace(t, t).second) {
+      met_at_[t] = poses_;
       members_[t] = {t};
       group_since_[t] = poses_;
     }

@@ -549,7 +549,8 @@ class CrackCutter {
   std::size_t poses_ = 0;
   std::map<std::size_t, std::size_t> crack_faces_since_;
   absl::flat_hash_map<mesh::TetId, std::size_t> group_since_;
-  // The pose at which the blade first met each unit of a group, until the unit closes.
+  // The pose at which the blade first met each unit of a group (when it joined one), until the
+  // unit closes (after its group is taken, so its split for good can read it).
   absl::flat_hash_map<mesh::TetId, std::size_t> met_at_;
   absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;

@@ -236,14 +236,9 @@ ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners)
   const auto met = met_at_.find(unit);
   if (met == met_at_.end()) return nullptr;
   const std::size_t first = met->second > 0 ? met->second - 1 : 0;
-  double mean_edge = 0;
-  for (int a = 0; a < 4; ++a) {
-    for (int b = a + 1; b < 4; ++b) {
-      mean_edge +=
-          (mesh_->current_position(corners[a]) - mesh_->current_position(corners[b])).norm() / 6;
-    }
-  }
-  return [this, corners, first, reach = kApexReach * mean_edge](const Eigen::Vector4d& w) {
+  const auto at = [&](int k) { return mesh_->current_position(corners[k]); };
+  const double reach = kApexReach * geometry::MeanEdgeLength(at(0), at(1), at(2), at(3));
+  return [this, corners, first, reach](const Eigen::Vector4d& w) {
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) x += w[k] * mesh_->current_position(corners[k]);
     return SweptNear(x, first, poses_, reach);

@@ -109,4 +109,10 @@ double SmallestDihedralDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
   return *std::min_element(angles.begin(), angles.end());
 }
 
+double MeanEdgeLength(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& d) {
+  return ((a - b).norm() + (a - c).norm() + (a - d).norm() + (b - c).norm() + (b - d).norm() +
+          (c - d).norm()) /
+         6;
+}
+
 }  // namespace kerf::geometry

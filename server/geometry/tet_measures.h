@@ -33,6 +33,10 @@ std::array<double, 6> DihedralAnglesDeg(const Eigen::Vector3d& a, const Eigen::V
 double SmallestDihedralDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                            const Eigen::Vector3d& c, const Eigen::Vector3d& d);
 
+// The mean of the six edges' lengths (edges ab, ac, ad, bc, bd, cd summed in that order).
+double MeanEdgeLength(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& d);
+
 // The smallest of the four heights (corner to opposite face's plane): three times the volume
 // over the largest face's area; 0 for a flat tet. The explicit time step scales with it.
 double SmallestHeight(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,

@@ -144,16 +144,6 @@ double OffTracePlane(OneTet& tet, const TetCrack& crack, const Eigen::Vector3d& 
   return std::abs(normal.dot(x - tet.Rest(points[0])));
 }
 
-double MeanEdge(OneTet& tet) {
-  double mean = 0;
-  for (int a = 0; a < 4; ++a) {
-    for (int b = a + 1; b < 4; ++b) {
-      mean += (tet.Rest(tet.corners()[a]) - tet.Rest(tet.corners()[b])).norm() / 6;
-    }
-  }
-  return mean;
-}
-
 // The apex is looked for near the blade's path too: one the path refuses is not taken where
 // another candidate is near it; where none is, the apex is still inside by the margin.
 TEST(ConeApex, AnApexAwayFromTheBladesPathIsNotTaken) {
@@ -167,7 +157,9 @@ TEST(ConeApex, AnApexAwayFromTheBladesPathIsNotTaken) {
   const Eigen::Vector4d chosen = ConeApexWeights(crack, rest, away_from_free);
   EXPECT_TRUE(away_from_free(chosen));
   EXPECT_GE(chosen.minCoeff(), kApexMargin - 1e-12);
-  EXPECT_LE(OffTracePlane(tet, crack, tet.Rest(tet.Apex(chosen))), kApexReach * MeanEdge(tet));
+  const auto corner = [&](int k) { return tet.Rest(tet.corners()[k]); };
+  EXPECT_LE(OffTracePlane(tet, crack, tet.Rest(tet.Apex(chosen))),
+            kApexReach * geometry::MeanEdgeLength(corner(0), corner(1), corner(2), corner(3)));
   const Eigen::Vector4d refused =
       ConeApexWeights(crack, rest, [](const Eigen::Vector4d&) { return false; });
   EXPECT_GE(refused.minCoeff(), kApexMargin - 1e-12);

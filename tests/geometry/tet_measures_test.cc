@@ -58,6 +58,17 @@ TEST(DihedralAngles, CornerTetHasThreeRightAnglesAndThreeOf54_7) {
   for (int e = 3; e < 6; ++e) EXPECT_NEAR(angles[e], far, 1e-12) << e;
 }
 
+TEST(SmallestDihedral, IsTheLeastOfTheSixAngles) {
+  EXPECT_NEAR(SmallestDihedralDeg(kO, kX, kY, kZ), std::acos(1 / std::sqrt(3.0)) * 180 / M_PI,
+              1e-12);
+}
+
+TEST(MeanEdgeLength, IsTheMeanOfTheSixEdges) {
+  // Three edges of 1 at the corner, three of sqrt 2 across.
+  EXPECT_NEAR(MeanEdgeLength(kO, kX, kY, kZ), (3 + 3 * std::sqrt(2.0)) / 6, 1e-15);
+  EXPECT_NEAR(MeanEdgeLength(2 * kO, 2 * kX, 2 * kY, 2 * kZ), 1 + std::sqrt(2.0), 1e-15);
+}
+
 TEST(DihedralAngles, RegularTetHasAllAnglesArccosOneThird) {
   const Vector3d a(1, 1, 1), b(1, -1, -1), c(-1, 1, -1), d(-1, -1, 1);
   for (const double angle : DihedralAnglesDeg(a, b, c, d)) {
