@@ -159,18 +159,19 @@ class PoseChecks {
                                                 ": ", valid_status.message()));
       }
     }
-    double covered = 1;
+    double covered = 1, covered_below = 1;
     if (!withdrawn && fidelity_ != nullptr && i > 0) {
       const lab::CrackFaces crack = fidelity_->FindCrackNearStep(*m_, i - 1);
       covered = fidelity_->StepCoverage(crack, i - 1);
+      covered_below = fidelity_->StepCoverageBelowSurface(crack, i - 1);
       if (covered < 1) report_->set_poses_not_covered(report_->poses_not_covered() + 1);
-      if (fidelity_->StepCoverageBelowSurface(crack, i - 1) < 1) {
+      if (covered_below < 1) {
         report_->set_poses_not_covered_below_surface(report_->poses_not_covered_below_surface() +
                                                      1);
       }
       report_->set_min_step_coverage(std::min(report_->min_step_coverage(), covered));
     }
-    if (trace_ != nullptr) Trace(i, valid, crack_area, covered);
+    if (trace_ != nullptr) Trace(i, valid, crack_area, covered, covered_below);
     if (options_.dump_directory.empty()) return absl::OkStatus();
     char name[32];
     std::snprintf(name, sizeof name, "pose-%04zu.vtu", i);
@@ -194,7 +195,7 @@ class PoseChecks {
         [&](mesh::VertexId v) { return cutter_->PartedFrom(v); });
   }
 
-  void Trace(std::size_t i, bool valid, double crack_area, double covered) {
+  void Trace(std::size_t i, bool valid, double crack_area, double covered, double covered_below) {
     const bool withdrawn = i == poses_.size();
     const cut::PoseSummary& pose = cutter_->last_pose();
     std::string cases;
@@ -207,7 +208,10 @@ class PoseChecks {
         "},\"open_tets\":", withdrawn ? 0 : pose.open_tets,
         ",\"temporary_tets\":", withdrawn ? 0 : pose.temporary_tets, ",\"tets\":", m_->tet_count(),
         ",\"valid\":", valid ? "true" : "false", ",\"open_area\":", crack_area,
-        withdrawn ? "" : absl::StrCat(",\"step_coverage\":", covered), "}\n");
+        withdrawn ? ""
+                  : absl::StrCat(",\"step_coverage\":", covered,
+                                 ",\"step_coverage_below_surface\":", covered_below),
+        "}\n");
     std::fputs(line.c_str(), trace_);
   }
 

@@ -35,6 +35,11 @@
 // lies across (sweeping in their plane, or its tip on them), are points too and the crack
 // reaches the blade (a cone from the tip, or from the middle of the blade's chord), the same
 // points moving with the blade (its pieces stand while only those move and none turns over);
+// where the blade crosses a face the tip's path crossed before, its point there stands beside
+// the face's own and the crack runs between them (Table 1's first two cases: a tip come in by a
+// face, a blade plunged through a tet, moving on), and where the crack's traces all lie in the
+// face the blade came in by, the split is the cone from the blade's point, so it reaches the
+// blade from them;
 // a crack face there none of whose corners parting separates (all on the crack's edge: the
 // blade, the tip's path) opens at a point in its middle. An edge point the blade leaves becomes
 // a point for good where it was last, and so does the farthest crossing of a face the blade went
@@ -174,6 +179,10 @@ class CrackCutter {
   struct BladeIn {
     // Crossings of faces with no point for good, barycentric: temporary points.
     absl::flat_hash_map<FaceKey, Eigen::Vector3d, FaceKeyHash> faces;
+    // Crossings of faces with a point for good, barycentric, at least kMinTemporaryWeight inside
+    // the face: where they lie well inside a triangle of that point's fan, temporary points
+    // beside it (FacePoints::beside), the crack running from the face's point to the blade.
+    absl::flat_hash_map<FaceKey, Eigen::Vector3d, FaceKeyHash> beside;
     // Edges with no point for good that the blade passes through (lying in their plane, or its
     // tip on them), by the fraction from the lower id: temporary points.
     absl::flat_hash_map<EdgeKey, double> edges;
@@ -416,12 +425,21 @@ class CrackCutter {
   // corners, the same point for the unit beside it. Returns CrackFaceSides (0: not opened).
   int OpenAtItsMiddle(mesh::TetId unit, const TetCrack& crack, const FaceKey& key,
                       CrackSplit* split);
+  // Whether the crack's traces all lie in one face of the unit that the blade crosses: the
+  // blade came in by that face, and the crack runs from them to the blade.
+  bool TracesInAFaceCrossed(const TetCrack& crack, const BladeIn& blade) const;
   // The unit's case of the paper's Table 1 with the blade in it (0: none of the eleven).
   int TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const;
   // Whether the pieces (live tets) are the split's tets, up to copies and orientation.
   bool SamePieces(const std::vector<mesh::TetId>& pieces,
                   const std::vector<mesh::TetVertices>& split) const;
   std::array<FacePoints, 4> PointsOf(const mesh::TetVertices& corners, const BladeIn* blade);
+  // Where the blade crosses the face `key` (barycentric on its vertices), which has a point for
+  // good, well inside a triangle of that point's fan: a temporary point beside it (p->beside), so
+  // the crack runs from where the tip's path crossed the face to the blade. Else nothing.
+  void PlaceBesidePoint(const FaceKey& key, const Eigen::Vector3d& crossing, FacePoints* p);
+  // The weights on `key`'s vertices of `v`: one of them, or a point the cut made on the face.
+  Eigen::Vector3d WeightsOnFace(const FaceKey& key, mesh::VertexId v) const;
   mesh::VertexId EdgePointVertex(mesh::VertexId a, mesh::VertexId b);
   mesh::VertexId FacePointVertex(const FaceKey& key);
   // New points (and temporary ones moved) take their positions, and the state the simulation

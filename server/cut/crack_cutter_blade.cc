@@ -160,8 +160,8 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
     in.crossed.push_back(key);
     first = std::min(first, crossing->t);
     last = std::max(last, crossing->t);
-    if (!face_points_.contains(key) && crossing->barycentric.minCoeff() >= kMinTemporaryWeight) {
-      in.faces[key] = crossing->barycentric;
+    if (crossing->barycentric.minCoeff() >= kMinTemporaryWeight) {
+      (face_points_.contains(key) ? in.beside : in.faces)[key] = crossing->barycentric;
     }
   }
   for (const auto& [i, j] : mesh::kTetEdges) {

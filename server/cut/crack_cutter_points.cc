@@ -4,6 +4,7 @@
 
 #include "base/check.h"
 #include "cut/crack_cutter.h"
+#include "cut/fan_triangle.h"
 
 namespace kerf::cut {
 namespace {
@@ -50,6 +51,11 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
     }
     if (face_points_.contains(key)) {
       p.inside = FacePointVertex(key);
+      if (blade != nullptr) {
+        if (const auto at = blade->beside.find(key); at != blade->beside.end()) {
+          PlaceBesidePoint(key, at->second, &p);
+        }
+      }
     } else if (const auto at =
                    blade ? blade->faces.find(key) : decltype(blade->faces)::const_iterator{};
                blade != nullptr && at != blade->faces.end()) {
@@ -82,6 +88,45 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
     }
   }
   return points;
+}
+
+Eigen::Vector3d CrackCutter::WeightsOnFace(const FaceKey& key, VertexId v) const {
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    if (key[i] == v) return Eigen::Vector3d::Unit(i);  // a corner (a point the cut made, too)
+  }
+  const auto recipe = recipe_.find(v);
+  KERF_CHECK(recipe != recipe_.end());
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 4; ++k) {
+      if (recipe->second.origins[k] == key[i]) w[i] += recipe->second.weights[k];
+    }
+  }
+  return w;
+}
+
+void CrackCutter::PlaceBesidePoint(const FaceKey& key, const Eigen::Vector3d& crossing,
+                                   FacePoints* p) {
+  // The face's boundary from its key's corners on (both tets at the face ask alike).
+  std::vector<VertexId> boundary;
+  for (int i = 0; i < 3; ++i) {
+    boundary.push_back(key[i]);
+    const VertexId a = key[i], b = key[(i + 1) % 3];
+    for (int j = 0; j < 3; ++j) {
+      const VertexId c = p->corners[j], d = p->corners[(j + 1) % 3];
+      if (p->on_edge[j] && ((c == a && d == b) || (c == b && d == a))) {
+        boundary.push_back(*p->on_edge[j]);
+      }
+    }
+  }
+  std::vector<Eigen::Vector3d> weights;
+  for (const VertexId v : boundary) weights.push_back(WeightsOnFace(key, v));
+  const std::optional<int> holding =
+      FanTriangleHolding(weights, WeightsOnFace(key, *p->inside), crossing, kMinTemporaryWeight);
+  if (!holding) return;  // at the face's point, or beside the fan's edges: the point's own
+  p->beside = TemporaryVertex(FacePlace(key), {key[0], key[1], key[2], key[0]},
+                              {crossing[0], crossing[1], crossing[2], 0});
+  p->beside_between = {boundary[*holding], boundary[(*holding + 1) % boundary.size()]};
 }
 
 VertexId CrackCutter::EdgePointVertex(VertexId a, VertexId b) {

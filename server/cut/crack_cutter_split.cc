@@ -133,6 +133,11 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   // where it is chosen by shape, and lack the faces to open).
   const bool stood = stood_.contains(unit);
   std::optional<CrackSplit> split = stood ? PiecesAsSplit(unit) : SplitWithoutApex(crack, rest);
+  // While the blade is in the unit the crack reaches it: a split without the blade's point
+  // whose traces all lie in a face the blade crosses (it came in by that face) has no crack
+  // inside, and gives way to the cone from the blade's point. (A blade lying in the face's plane
+  // crosses it not: the crack lies in the face.)
+  if (blade != nullptr && !stood && split && TracesInAFaceCrossed(crack, *blade)) split.reset();
   // For good, a minimal split with slivers gives way to a cone that has fewer.
   std::optional<Eigen::Vector4d> cone_apex;
   if (blade == nullptr && !stood && split) {
@@ -153,7 +158,8 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     const Eigen::Vector4d apex = blade != nullptr ? blade->apex
                                  : cone_apex      ? *cone_apex
                                                   : ApexForGood(unit, crack);
-    split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners, apex));
+    split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners, apex),
+                        /*apex_on_crack=*/blade != nullptr);
   }
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
   // between its points and the crack stay open until it moves on.
@@ -220,6 +226,24 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
       corners, source, std::move(pieces), std::move(crack_faces), std::move(openings), points,
       cone,    opened, smallest_volume};
   return to_part;
+}
+
+bool CrackCutter::TracesInAFaceCrossed(const TetCrack& crack, const BladeIn& blade) const {
+  const std::vector<VertexId> points = TracePoints(crack);
+  if (points.empty() || HasInnerCrack(crack)) return false;
+  for (int k = 0; k < 4; ++k) {
+    const std::vector<VertexId>& on_face = crack.face_vertices[k];
+    const auto& f = mesh::kTetFaces[k];
+    const FaceKey key = MakeFaceKey(crack.corners[f[0]], crack.corners[f[1]], crack.corners[f[2]]);
+    if (std::all_of(points.begin(), points.end(),
+                    [&](VertexId v) {
+                      return std::find(on_face.begin(), on_face.end(), v) != on_face.end();
+                    }) &&
+        std::find(blade.crossed.begin(), blade.crossed.end(), key) != blade.crossed.end()) {
+      return true;
+    }
+  }
+  return false;
 }
 
 Eigen::Vector4d CrackCutter::ApexForGood(TetId unit, const TetCrack& crack) const {

@@ -213,6 +213,11 @@ bool HasInnerCrack(const TetCrack& crack) {
 
 std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,
                                            const std::function<Eigen::Vector3d(VertexId)>& rest) {
+  // A face with the blade's point beside its own fits none of the minimal cases.
+  if (std::any_of(crack.points.begin(), crack.points.end(),
+                  [](const FacePoints& p) { return p.beside.has_value(); })) {
+    return std::nullopt;
+  }
   const bool inner = HasInnerCrack(crack);
   std::vector<EdgeCut> cuts;
   for (const auto& [i, j] : mesh::kTetEdges) {
@@ -301,7 +306,7 @@ int PiecesUnder(const CrackSplit& split, const std::function<Eigen::Vector3d(Ver
   return under;
 }
 
-CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {
+CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex, bool apex_on_crack) {
   CrackSplit split;
   split.kind = CrackSplitKind::kCone;
   split.cut_case = CutCase::kStar;
@@ -311,7 +316,7 @@ CrackSplit SplitAsCone(const TetCrack& crack, VertexId apex) {
       split.tets.push_back({apex, t[0], t[1], t[2]});
     }
   }
-  if (HasInnerCrack(crack)) {
+  if (apex_on_crack || HasInnerCrack(crack)) {
     for (const auto& s : Traces(crack)) split.crack_faces.push_back({apex, s[0], s[1]});
   }
   AddWholeFaceCracks(crack, &split);

@@ -51,12 +51,16 @@ struct CrackSplit {
 };
 
 // The split without a new point: the tet whole, bisected or one of the minimal cases; nullopt
-// when none fits (then SplitAsCone). `rest` gives rest positions (for case iii's choice).
+// when none fits (then SplitAsCone), as where a face has a point beside its inside one.
+// `rest` gives rest positions (for case iii's choice).
 std::optional<CrackSplit> SplitWithoutApex(
     const TetCrack& crack, const std::function<Eigen::Vector3d(mesh::VertexId)>& rest);
 
-// The cone from `apex`, a vertex strictly inside the tet, over its faces' triangles.
-CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex);
+// The cone from `apex`, a vertex strictly inside the tet, over its faces' triangles. Its crack
+// faces run from the apex through each trace segment where the traces do not all lie on one
+// face, or wherever the apex is on the crack itself (`apex_on_crack`: the blade's point, where
+// the crack reaches the blade from traces that may all lie in the face it came in by).
+CrackSplit SplitAsCone(const TetCrack& crack, mesh::VertexId apex, bool apex_on_crack = false);
 
 // Leaves out the inner crack faces that wall pieces in: a group of pieces joined through faces
 // off the crack, none of whose triangles on the tet's faces is off the crack, would be cut free

@@ -34,13 +34,23 @@ std::vector<VertexId> Boundary(const FacePoints& p) {
 // The triangles and the trace (see the header).
 FaceSplit SplitFaceTriangles(const FacePoints& p) {
   KERF_CHECK(!(!p.inside && EdgePointCount(p) == 3));
+  KERF_CHECK(!p.beside || p.inside);
   FaceSplit split;
   const int edge_points = EdgePointCount(p);
   if (p.inside) {
     const std::vector<VertexId> boundary = Boundary(p);
     for (std::size_t i = 0; i < boundary.size(); ++i) {
-      split.triangles.push_back({*p.inside, boundary[i], boundary[(i + 1) % boundary.size()]});
+      const VertexId b = boundary[i], c = boundary[(i + 1) % boundary.size()];
+      if (p.beside && ((b == p.beside_between[0] && c == p.beside_between[1]) ||
+                       (b == p.beside_between[1] && c == p.beside_between[0]))) {
+        split.triangles.push_back({*p.beside, *p.inside, b});
+        split.triangles.push_back({*p.beside, b, c});
+        split.triangles.push_back({*p.beside, c, *p.inside});
+      } else {
+        split.triangles.push_back({*p.inside, b, c});
+      }
     }
+    if (p.beside) split.trace.push_back(Segment(*p.inside, *p.beside));
     for (int k = 0; k < 3; ++k) {
       if (p.on_edge[k]) split.trace.push_back(Segment(*p.inside, *p.on_edge[k]));
       if (edge_points == 0 && p.corner_on_crack[k]) {

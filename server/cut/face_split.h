@@ -9,7 +9,9 @@
 // of each tet at the face spans from.
 //
 //   inside point I:   a fan from I over the boundary; the trace runs from I to each edge point
-//                     (and to each corner on the crack when no edge is cut);
+//                     (and to each corner on the crack when no edge is cut); a point beside I
+//                     (the blade crossing, elsewhere, a face whose point I is for good) splits
+//                     the fan's triangle holding it in three, and the trace runs from I to it;
 //   three edge points (no I): as above, I being the hub;
 //   two edge points:  the corner between them cut off, the quadrilateral left split through its
 //                     vertex of smallest key (corners before edge points, then by id: the rule of
@@ -43,6 +45,11 @@ struct FacePoints {
   // corners do: false where they came onto the crack from parts of the blade's path farther apart
   // than the edge (the crack reaches each, not the edge between them).
   std::array<bool, 3> edge_on_crack = {true, true, true};
+  // Only with `inside`: a second point strictly inside the triangle of inside's fan over the
+  // boundary from `beside_between[0]` to `beside_between[1]` (either way round), through which
+  // the crack runs from `inside` (the blade's crossing now of a face the tip's path crossed).
+  std::optional<mesh::VertexId> beside = std::nullopt;
+  std::array<mesh::VertexId, 2> beside_between{};
 
   friend bool operator==(const FacePoints&, const FacePoints&) = default;
 };
@@ -60,7 +67,8 @@ struct FaceSplit {
 // The split of the face. Requires !NeedsHub(points).
 FaceSplit SplitFace(const FacePoints& points);
 
-// The face's points on the crack: its corners on the crack, its edge points and its inside point.
+// The face's points on the crack: its corners on the crack, its edge points and its inside point
+// (not the point beside it: the blade, whose crack runs through the tet, not in the face).
 std::vector<mesh::VertexId> PointsOnCrack(const FacePoints& points);
 
 }  // namespace kerf::cut

@@ -243,6 +243,9 @@ TEST(KerfCli, CutTracesAndDumpsEveryPoseProgressively) {
     for (std::string line; std::getline(trace, line); ++lines) {
       EXPECT_THAT(line, HasSubstr("\"valid\":true")) << line;
       EXPECT_THAT(line, HasSubstr(absl::StrCat("{\"pose\":", lines, ",")));
+      if (lines < 16) {
+        EXPECT_THAT(line, HasSubstr("\"step_coverage_below_surface\":")) << line;
+      }
     }
     EXPECT_EQ(lines, 17);  // 16 poses and the withdrawal
     for (const char* file : {"/pose-0000.vtu", "/pose-0015.vtu", "/withdrawn.vtu"}) {

@@ -149,6 +149,57 @@ TEST(CrackCutterBlade, TheCrackReachesWhereTheBladeTurnedBack) {
   }
 }
 
+// Progressive, in the unit tet: the blade, standing along +z, comes down through the tet's
+// slanted face (x + y + z = 1) at `entry`, its tip going `depth` under it, then moves `sideways`
+// in small steps without crossing an edge of the tet (every crossing a quarter of a face or more
+// from its edges, so none snaps). After each sideways pose the crack reaches the blade: the
+// step's own swept surface is covered (point-wise lag 0). Returns the least step coverage of the
+// sideways poses.
+double LeastCoverageMovingSideways(const Eigen::Vector3d& entry, double depth,
+                                   const Eigen::Vector3d& sideways) {
+  const TetMesh tet = kerf::testing::UnitTet();
+  TetMesh m = tet;
+  CrackCutter cutter = *CrackCutter::Create(&m, 1, kLoose);
+  lab::FidelityMeter meter(tet);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  std::vector<BladePose> poses;
+  for (int i = 0; i <= 10; ++i) {  // the plunge, along the blade: it sweeps nothing
+    const Eigen::Vector3d tip = entry + (0.2 - (0.2 + depth) * i / 10) * up;
+    poses.push_back({0.01 * i, tip, tip + 1.5 * up});
+  }
+  const int plunge = static_cast<int>(poses.size());
+  for (int i = 1; i <= 20; ++i) {
+    const Eigen::Vector3d tip = poses[plunge - 1].tip + sideways * i / 20;
+    poses.push_back({0.01 * (plunge + i), tip, tip + 1.5 * up});
+  }
+  double least = 1;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_TRUE(cutter.ApplyPose(poses[i]).ok());
+    if (i == 0) continue;
+    const std::size_t step = meter.AddStep(poses[i - 1], poses[i]);
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << i << ": " << mesh::ValidateMesh(m);
+    if (static_cast<int>(i) < plunge) continue;
+    EXPECT_GT(meter.StepSamples(step), 0u) << i;
+    least = std::min(least, meter.StepCoverage(meter.FindCrackNearStep(m, step), step));
+  }
+  cutter.Finish();
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  return least;
+}
+
+// Table 1's first case: the tip came in by a face and stays inside; the blade moves on, crossing
+// that face beside where the tip's path did. The crack runs from the tip's crossing of the face
+// to the blade's (without the blade's point beside the face's own, the tet had no crack).
+TEST(CrackCutterBlade, TheCrackReachesTheBladeInATetItsTipCameInBy) {
+  EXPECT_EQ(LeastCoverageMovingSideways({0.3, 0.3, 0.4}, 0.15, {0.05, -0.03, 0}), 1);
+}
+
+// Table 1's second case: the tip's path went through two faces (the blade plunged through the
+// tet, out by its face z = 0) and the blade moves on, crossing both beside those points.
+TEST(CrackCutterBlade, TheCrackReachesTheBladeInATetItPlungedThrough) {
+  EXPECT_EQ(LeastCoverageMovingSideways({0.3, 0.3, 0.4}, 0.5, {0.05, -0.03, 0}), 1);
+}
+
 // The scripted paths reach every case of the paper's Table 1, each pose valid and conforming
 // (cut with the least snapping: the paths were found for crossings taken where they are).
 TEST(CrackCutterBlade, EveryTableCaseIsReached) {

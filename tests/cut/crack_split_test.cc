@@ -278,6 +278,26 @@ TEST(CrackSplit, ACrackAlongACutEdgeIsSplitInTwo) {
   ExpectTiles(tet, crack, *split);
 }
 
+// A crack whose trace lies in one face (the blade came in by it, its tip inside): a cone from a
+// point the crack does not reach has no crack inside; from the blade's point, on the crack, its
+// faces run from that point through the trace.
+TEST(CrackSplit, AConeFromAPointOnTheCrackSpansATraceInOneFace) {
+  OneTet tet;
+  tet.PointInFace(3, {0.4, 0.3, 0.3});  // face 3: corners 0, 1, 2
+  tet.CutEdge(0, 1, 0.5);
+  const TetCrack crack = tet.Crack();
+  ASSERT_FALSE(HasInnerCrack(crack));
+  const mesh::VertexId apex = tet.Apex({0.3, 0.3, 0.2, 0.2});
+  EXPECT_TRUE(SplitAsCone(crack, apex).crack_faces.empty());
+  const CrackSplit split = SplitAsCone(crack, apex, /*apex_on_crack=*/true);
+  ExpectTiles(tet, crack, split);
+  ASSERT_EQ(split.crack_faces.size(), 1u);
+  const std::vector<mesh::VertexId> trace = TracePoints(crack);
+  for (const mesh::VertexId v : split.crack_faces[0]) {
+    EXPECT_TRUE(v == apex || std::find(trace.begin(), trace.end(), v) != trace.end());
+  }
+}
+
 // Three corners on the crack (their face lies on it) and the two edges from two of them to the
 // fourth cut: the cone's faces through the on-crack face's edges would wall in the piece over
 // it; none is.

@@ -36,7 +36,8 @@ Eigen::Vector2d At(VertexId v) {
                                                            {10, {0.5, 0}},
                                                            {11, {0.5, 0.5}},
                                                            {12, {0, 0.5}},
-                                                           {20, {1.0 / 3, 1.0 / 3}}};
+                                                           {20, {1.0 / 3, 1.0 / 3}},
+                                                           {21, {0.3, 0.6}}};
   return positions.at(static_cast<int>(v));
 }
 
@@ -59,6 +60,35 @@ TEST(FaceSplit, EveryPatternTilesTheFaceWithTrianglesOfOneOrientation) {
       area += Area(t);
     }
     EXPECT_NEAR(area, 0.5, 1e-15) << "pattern " << mask;
+  }
+}
+
+// The blade crossing a face elsewhere than its point for good (the tip's path's): the fan's
+// triangle holding it splits in three, the trace runs from the face's point to the blade's, and
+// no triangle at the blade's point lies on the crack (the crack runs through the tet from it).
+TEST(FaceSplit, APointBesideTheInsideOneSplitsItsFanTriangleAndIsTracedTo) {
+  const VertexId beside{21};  // (0.3, 0.6): in the fan triangle from the inside point to c
+  for (const bool edge_cut : {false, true}) {
+    FacePoints p = Points({false, edge_cut, false}, true, {true, false, false});
+    p.beside = beside;
+    p.beside_between =
+        edge_cut ? std::array<VertexId, 2>{kC, E(1)} : std::array<VertexId, 2>{kB, kC};
+    const FaceSplit split = SplitFace(p);
+    ASSERT_EQ(split.triangles.size(), edge_cut ? 6u : 5u);
+    double area = 0;
+    for (const auto& t : split.triangles) {
+      EXPECT_GT(Area(t), 1e-12);
+      area += Area(t);
+    }
+    EXPECT_NEAR(area, 0.5, 1e-15);
+    EXPECT_NE(
+        std::find(split.trace.begin(), split.trace.end(), std::array<VertexId, 2>{kInside, beside}),
+        split.trace.end());
+    for (const auto& t : split.on_crack) {
+      EXPECT_EQ(std::count(t.begin(), t.end(), beside), 0);
+    }
+    const std::vector<VertexId> on_crack = PointsOnCrack(p);
+    EXPECT_EQ(std::count(on_crack.begin(), on_crack.end(), beside), 0);
   }
 }
 
