@@ -425,9 +425,12 @@ class CrackCutter {
   // corners, the same point for the unit beside it. Returns CrackFaceSides (0: not opened).
   int OpenAtItsMiddle(mesh::TetId unit, const TetCrack& crack, const FaceKey& key,
                       CrackSplit* split);
-  // Whether the crack's traces all lie in one face of the unit that the blade crosses: the
-  // blade came in by that face, and the crack runs from them to the blade.
-  bool TracesInAFaceCrossed(const TetCrack& crack, const BladeIn& blade) const;
+  // Whether a split of the unit by the crack's points alone (no point of the blade's inside)
+  // would leave the blade off the crack: where the crack has traces and the tip is inside (no
+  // such split has the tip on its crack; the paper's Table 1 splits a tet at the tip), or where
+  // every trace lies in one face the blade crosses (it came in by that face: the crack would lie
+  // in it; a blade lying in the face's plane crosses it not, and its crack does lie there).
+  bool SplitMissesTheBlade(const TetCrack& crack, const BladeIn& blade) const;
   // The unit's case of the paper's Table 1 with the blade in it (0: none of the eleven).
   int TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const;
   // Whether the pieces (live tets) are the split's tets, up to copies and orientation.

@@ -133,11 +133,9 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   // where it is chosen by shape, and lack the faces to open).
   const bool stood = stood_.contains(unit);
   std::optional<CrackSplit> split = stood ? PiecesAsSplit(unit) : SplitWithoutApex(crack, rest);
-  // While the blade is in the unit the crack reaches it: a split without the blade's point
-  // whose traces all lie in a face the blade crosses (it came in by that face) has no crack
-  // inside, and gives way to the cone from the blade's point. (A blade lying in the face's plane
-  // crosses it not: the crack lies in the face.)
-  if (blade != nullptr && !stood && split && TracesInAFaceCrossed(crack, *blade)) split.reset();
+  // While the blade is in the unit the crack reaches it: a split without the blade's point that
+  // misses the blade gives way to the cone from that point.
+  if (blade != nullptr && !stood && split && SplitMissesTheBlade(crack, *blade)) split.reset();
   // For good, a minimal split with slivers gives way to a cone that has fewer.
   std::optional<Eigen::Vector4d> cone_apex;
   if (blade == nullptr && !stood && split) {
@@ -228,9 +226,11 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   return to_part;
 }
 
-bool CrackCutter::TracesInAFaceCrossed(const TetCrack& crack, const BladeIn& blade) const {
+bool CrackCutter::SplitMissesTheBlade(const TetCrack& crack, const BladeIn& blade) const {
   const std::vector<VertexId> points = TracePoints(crack);
-  if (points.empty() || HasInnerCrack(crack)) return false;
+  if (points.empty()) return false;
+  if (blade.tip_inside) return true;
+  if (HasInnerCrack(crack)) return false;
   for (int k = 0; k < 4; ++k) {
     const std::vector<VertexId>& on_face = crack.face_vertices[k];
     const auto& f = mesh::kTetFaces[k];

@@ -7,10 +7,14 @@
 #include "cut/crack_cutter.h"
 #include "geometry/tet_measures.h"
 #include "lab/crack_fidelity.h"
+#include "lab/hand_paths.h"
 #include "lab/progressive_case_paths.h"
 #include "mesh/box_lattice.h"
 #include "mesh/face_tiling.h"
+#include "mesh/io/mesh_file.h"
+#include "mesh/mesh_quality.h"
 #include "mesh/mesh_validation.h"
+#include "support/shared_meshes.h"
 #include "support/unit_tet.h"
 
 namespace kerf::cut {
@@ -198,6 +202,39 @@ TEST(CrackCutterBlade, TheCrackReachesTheBladeInATetItsTipCameInBy) {
 // tet, out by its face z = 0) and the blade moves on, crossing both beside those points.
 TEST(CrackCutterBlade, TheCrackReachesTheBladeInATetItPlungedThrough) {
   EXPECT_EQ(LeastCoverageMovingSideways({0.3, 0.3, 0.4}, 0.5, {0.05, -0.03, 0}), 1);
+}
+
+// Hand paths through liver2.msh whose blade trembled and hesitated with its tip in tets it had
+// come into by a face or plunged through (seeds 6, 8 and 10: 21, 13 and 25 poses on end whose own
+// step was not all cut at once, below the surface, where the crack lay in the face the blade came
+// in by, had no face in the tet, or ended on a chord short of the tip): the crack reaches the
+// blade after every pose.
+TEST(CrackCutterBlade, TheCrackKeepsUpWithAHandTremblingInsideTheLiver) {
+  const std::string path = kerf::testing::SharedMeshPath("liver2.msh");
+  if (path.empty()) GTEST_SKIP() << "no ../shared/meshes";
+  const TetMesh liver = *mesh::ReadMeshFile(path);
+  const double diagonal = mesh::MeasureBounds(liver).diagonal();
+  for (const std::uint64_t seed : {6, 8, 10}) {
+    SCOPED_TRACE(::testing::Message() << "hand seed " << seed);
+    TetMesh m = liver;
+    const std::vector<BladePose> poses = lab::MakeHandPath(liver, lab::PathFamily::kHand, seed);
+    CrackCutter cutter = *CrackCutter::Create(
+        &m, mesh::MeanEdgeLength(m),
+        {.max_length = 2 * diagonal, .max_step = 0.25 * diagonal, .max_speed = 1e9});
+    lab::FidelityMeter meter(liver);
+    std::size_t lagging = 0, swept = 0;
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      ASSERT_TRUE(cutter.ApplyPose(poses[i]).ok());
+      if (i == 0) continue;
+      const std::size_t step = meter.AddStep(poses[i - 1], poses[i]);
+      swept += meter.StepSamples(step) > 0;
+      lagging += meter.StepCoverageBelowSurface(meter.FindCrackNearStep(m, step), step) < 1;
+    }
+    cutter.Finish();
+    EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    EXPECT_GT(swept, 500u);
+    EXPECT_EQ(lagging, 0u);
+  }
 }
 
 // The scripted paths reach every case of the paper's Table 1, each pose valid and conforming
