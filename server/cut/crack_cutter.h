@@ -37,9 +37,9 @@
 // points moving with the blade (its pieces stand while only those move and none turns over);
 // where the blade crosses a face the tip's path crossed before, its point there stands beside
 // the face's own and the crack runs between them (Table 1's first two cases: a tip come in by a
-// face, a blade plunged through a tet, moving on), and where the crack's traces all lie in the
-// face the blade came in by, the split is the cone from the blade's point, so it reaches the
-// blade from them;
+// face, a blade plunged through a tet, moving on), and where a split of a unit's points alone
+// would miss the blade (its tip inside, or the crack's traces all in the face it came in by),
+// the unit splits as the cone from the blade's point;
 // a crack face there none of whose corners parting separates (all on the crack's edge: the
 // blade, the tip's path) opens at a point in its middle. An edge point the blade leaves becomes
 // a point for good where it was last, and so does the farthest crossing of a face the blade went
