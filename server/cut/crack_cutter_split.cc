@@ -227,19 +227,12 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
 }
 
 bool CrackCutter::SplitMissesTheBlade(const TetCrack& crack, const BladeIn& blade) const {
-  const std::vector<VertexId> points = TracePoints(crack);
-  if (points.empty()) return false;
+  if (TracePoints(crack).empty()) return false;
   if (blade.tip_inside) return true;
-  if (HasInnerCrack(crack)) return false;
-  for (int k = 0; k < 4; ++k) {
-    const std::vector<VertexId>& on_face = crack.face_vertices[k];
+  for (const int k : FacesHoldingTheTrace(crack)) {
     const auto& f = mesh::kTetFaces[k];
     const FaceKey key = MakeFaceKey(crack.corners[f[0]], crack.corners[f[1]], crack.corners[f[2]]);
-    if (std::all_of(points.begin(), points.end(),
-                    [&](VertexId v) {
-                      return std::find(on_face.begin(), on_face.end(), v) != on_face.end();
-                    }) &&
-        std::find(blade.crossed.begin(), blade.crossed.end(), key) != blade.crossed.end()) {
+    if (std::find(blade.crossed.begin(), blade.crossed.end(), key) != blade.crossed.end()) {
       return true;
     }
   }

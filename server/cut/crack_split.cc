@@ -198,17 +198,22 @@ std::vector<VertexId> TracePoints(const TetCrack& crack) {
   return points;
 }
 
-bool HasInnerCrack(const TetCrack& crack) {
+std::vector<int> FacesHoldingTheTrace(const TetCrack& crack) {
   const std::vector<VertexId> points = TracePoints(crack);
-  if (points.empty()) return false;
+  std::vector<int> faces;
+  if (points.empty()) return faces;
   for (int k = 0; k < 4; ++k) {
     const std::vector<VertexId>& on_face = FaceVertices(crack, k);
     if (std::all_of(points.begin(), points.end(),
                     [&](VertexId v) { return Contains(on_face, v); })) {
-      return false;
+      faces.push_back(k);
     }
   }
-  return true;
+  return faces;
+}
+
+bool HasInnerCrack(const TetCrack& crack) {
+  return !TracePoints(crack).empty() && FacesHoldingTheTrace(crack).empty();
 }
 
 std::optional<CrackSplit> SplitWithoutApex(const TetCrack& crack,

@@ -39,6 +39,9 @@ TetCrack MakeTetCrack(const mesh::TetVertices& corners, std::array<FacePoints, 4
 // The distinct ends of the faces' trace segments, and whether they do not all lie on one face.
 std::vector<mesh::VertexId> TracePoints(const TetCrack& crack);
 bool HasInnerCrack(const TetCrack& crack);
+// The faces (k: the face opposite corner k) that hold every trace point; none where there is no
+// trace or it spans the tet (HasInnerCrack).
+std::vector<int> FacesHoldingTheTrace(const TetCrack& crack);
 
 enum class CrackSplitKind { kWhole, kBisected, kMinimal, kCone };
 
