@@ -2,52 +2,17 @@
 // leaves on a tet's edges and faces, the tet is split (cut/crack_split.h), so nothing the blade
 // did is dropped, held back or frozen.
 //
-// The crack's state is a set of points on the mesh: at most one on each edge (the first
-// crossing of the blade's edge; later ones are the same cut, but where the crack lies along the
-// edge its front advances with the blade), at most one inside each face (the
-// first crossing of the tip's path: where the crack ends), and the vertices the crack passes
-// through. Snapping is decided once per crossing: one within `snap_fraction` of the tissue's edge
-// length there from a corner (of a face's, barycentric, from a corner, or from an edge, where it
-// becomes that edge's point; an edge's within kSliverSnapScale times that where it would make a
-// sliver), and a vertex that near the swept surface, is taken at the corner, which is then on the
-// crack, if the corner lies within kSnapReach of its tets' mean edge of the step's swept surface;
-// farther, an edge's point moves away from the corner instead. So it does from a vertex of the
-// tissue's surface where the crack, snapped to it, would lie on the surface and what the blade
-// cut under it be lost (SnapWouldLayCrackOnSurface: the blade grazing the surface, its tip just
-// under it, or sweeping along it), and a face's crossing beside an edge of the surface stays a
-// point of the face, moved off its edges (face_point_weights.h; near two of them, their corner is
-// taken if it may snap). What is cut stays cut: a crossing within kSnapReach of the tissue's edge
-// there of a crack face made before (of a tet the blade does not hold open) adds no point
-// (OnTheCrackAlready), so a blade going back over its cut, or coming in again where it came out,
-// does not cut the pieces beside the crack again. A chip (a
-// few tets joined through faces off the crack, every corner of them on the crack: snapped onto
-// it, or points the cut made) would be cut free by the face rule though the blade never cut
-// around it; it holds by its largest crack face beside a tet with a corner off the crack, kept
-// off the crack for both sides (HoldChips), so the cut frees nothing the blade did not cut off.
-// The tissue's edge length is the edge's own for the tissue's edges and that of the tet it was cut
-// from for a piece's edge (SnapShare), so a cut through pieces makes none finer than a cut through
-// tets. Points are kept as weights until a split uses them. Edges and faces are named by their
-// vertices' origins (cut/star_parting.h), so the two lips of a crack share their points.
-//
-// The tets that share points form groups. Progressive (the default): after every pose, each tet
-// with new points, and each the blade is or was in, is split at once from its own corners (an
-// open tet); while the blade is in it the blade's crossings of its faces, and of the edges it
-// lies across (sweeping in their plane, or its tip on them), are points too and the crack
-// reaches the blade (a cone from the tip, or from the middle of the blade's chord), the same
-// points moving with the blade (its pieces stand while only those move and none turns over);
-// where the blade crosses a face the tip's path crossed before, its point there stands beside
-// the face's own and the crack runs between them (Table 1's first two cases: a tip come in by a
-// face, a blade plunged through a tet, moving on), and where a split of a unit's points alone
-// would miss the blade (its tip inside, or the crack's traces all in the face it came in by),
-// the unit splits as the cone from the blade's point;
-// a crack face there none of whose corners parting separates (all on the crack's edge: the
-// blade, the tip's path) opens at a point in its middle. An edge point the blade leaves becomes
-// a point for good where it was last, and so does the farthest crossing of a face the blade went
-// into and came back from (KeepFarthestFaceCrossings). A group closes once the blade meets none of
-// its tets: their pieces are then tets of their own. Deferred: a group splits once the blade meets
-// none of its tets. Either way, withdrawing the blade makes its crossings of faces points where the
-// crack ends, and after every split the vertices of the crack are parted where it separates their
-// tets.
+// The crack's state is a set of points named by origins (cut/star_parting.h), so the two lips
+// share them: at most one on each edge (the blade edge's first crossing), at most one inside each
+// face (the tip path's first crossing: where the crack ends), and the vertices the crack passes
+// through, snapping decided once per crossing (crack_cutter_snap.cc). What is cut stays cut: a
+// crossing near a crack face made before adds no point (OnTheCrackAlready). The tets that share
+// points form groups. Progressive (the default): after every pose each tet with new points, and
+// each the blade is or was in, is split at once from its own corners, the blade's crossings being
+// temporary points (crack_cutter_blade.cc) and the crack reaching the blade; a group closes once
+// the blade meets none of its tets. Deferred: a group splits once the blade meets none of its
+// tets. After every split the crack's vertices are parted where it separates their tets.
+// docs/cutting-fidelity.md ("The cutter") states each rule, the reason for it and its measures.
 #pragma once
 
 #include <algorithm>
@@ -157,6 +122,11 @@ class CrackCutter {
     Eigen::Vector3d barycentric;  // on the face key's vertices
     mesh::VertexId vertex = kNoVertex;
   };
+  // Whether a tet's crack has traces, and the faces (origins) that hold all of them.
+  struct CrackTraces {
+    bool any = false;
+    std::vector<FaceKey> holding;
+  };
   // A tet the blade is in (progressive), standing in the mesh as its temporary pieces.
   struct OpenTet {
     mesh::TetVertices corners;  // origins
@@ -166,14 +136,16 @@ class CrackCutter {
     // Crack faces inside it opened at a point in their middle (SplitUnits), by origins.
     std::vector<FaceKey> openings;
     // The points its pieces were split at (temporary ones by their ids, which stay while the
-    // blade moves them), whether a cone's apex is one of them, and whether a crack face of them
-    // was opened (inside, or in a face of it: then the pieces are made again at each pose).
+    // blade moves them), whether a cone's apex is one of them, and whether a crack face in a face
+    // of it was opened (alike in the unit beside: then the pieces are made again at each pose;
+    // those inside it, `openings`, move with the points they lie between).
     std::array<FacePoints, 4> points;
     bool cone = false;
-    bool opened = false;
+    bool opened_in_face = false;
     // The smallest rest volume of its pieces when they were laid out, or last found the same
     // by a split made anew (m^3; see PiecesStand).
     double smallest_volume = 0;
+    CrackTraces traces;  // of the crack at `points`
   };
   // The blade's points in a tet it meets now.
   struct BladeIn {
@@ -402,10 +374,12 @@ class CrackCutter {
   std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade,
                                         std::span<const FaceKey> to_open = {});
   // Whether the open unit's pieces stand as they are with the blade in it at `points`: the
-  // same points as when they were made (only temporary ones moved), no crack face opened, and
+  // same points as when they were made (only temporary ones moved), no crack face in a face of it
+  // opened, and
   // every piece still holding over half of OpenTet::smallest_volume (a piece thinned further
   // by the moving points, the layout is chosen again: a sliver the tissue inverts makes the
-  // corotational law pump energy into it). A cone's apex then moves with the blade.
+  // corotational law pump energy into it). A cone's apex then moves with the blade, and the
+  // points opening crack faces inside it with the middles of those faces.
   bool PiecesStand(mesh::TetId unit, const std::array<FacePoints, 4>& points, const BladeIn& blade);
   // The open unit's pieces and crack faces, by origins, as a split.
   CrackSplit PiecesAsSplit(mesh::TetId unit) const;
@@ -425,12 +399,18 @@ class CrackCutter {
   // corners, the same point for the unit beside it. Returns CrackFaceSides (0: not opened).
   int OpenAtItsMiddle(mesh::TetId unit, const TetCrack& crack, const FaceKey& key,
                       CrackSplit* split);
+  // The middle of the face `key` (rest positions), barycentric on `corners`.
+  Eigen::Vector4d MiddleOf(const mesh::TetVertices& corners, const FaceKey& key) const;
   // Whether a split of the unit by the crack's points alone (no point of the blade's inside)
   // would leave the blade off the crack: where the crack has traces and the tip is inside (no
   // such split has the tip on its crack; the paper's Table 1 splits a tet at the tip), or where
   // every trace lies in one face the blade crosses (it came in by that face: the crack would lie
   // in it; a blade lying in the face's plane crosses it not, and its crack does lie there).
-  bool SplitMissesTheBlade(const TetCrack& crack, const BladeIn& blade) const;
+  bool SplitMissesTheBlade(const TetCrack& crack, const BladeIn& blade) const {
+    return MissesTheBlade(TracesOf(crack), blade);
+  }
+  static CrackTraces TracesOf(const TetCrack& crack);
+  static bool MissesTheBlade(const CrackTraces& traces, const BladeIn& blade);
   // The unit's case of the paper's Table 1 with the blade in it (0: none of the eleven).
   int TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const;
   // Whether the pieces (live tets) are the split's tets, up to copies and orientation.

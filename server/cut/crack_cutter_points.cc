@@ -215,13 +215,15 @@ VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& origins,
 
 double CrackCutter::ScaleOf(const std::array<VertexId, 4>& origins,
                             const Eigen::Vector4d& weights) const {
-  std::vector<VertexId> used;
+  std::array<VertexId, 4> used;
+  std::size_t n = 0;
   for (int k = 0; k < 4; ++k) {
-    if (weights[k] != 0 && std::find(used.begin(), used.end(), origins[k]) == used.end()) {
-      used.push_back(origins[k]);
+    if (weights[k] != 0 &&
+        std::find(used.begin(), used.begin() + n, origins[k]) == used.begin() + n) {
+      used[n++] = origins[k];
     }
   }
-  return LengthsOf(used).tissue_edge();
+  return LengthsOf(std::span<const VertexId>(used.data(), n)).tissue_edge();
 }
 
 CrackCutter::Lengths CrackCutter::LengthsOf(std::span<const VertexId> vertices) const {

@@ -171,15 +171,18 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   std::vector<FaceKey> openings;
   if (was_open && blade != nullptr) {
     for (const FaceKey& key : open_.at(unit).openings) {
-      if (OpenAtItsMiddle(unit, crack, key, &*split) == 2) openings.push_back(key);
+      // Pieces that stood have them open already.
+      if (stood || OpenAtItsMiddle(unit, crack, key, &*split) == 2) openings.push_back(key);
     }
   }
+  bool opened_in_face = false;
   for (const FaceKey& key : to_open) {
     // The split is the one that left it shut, made again: it has the face (the unit beside
     // opens it too).
     const int sides = OpenAtItsMiddle(unit, crack, key, &*split);
     KERF_CHECK(sides > 0);
     if (sides == 2) openings.push_back(key);
+    opened_in_face = opened_in_face || sides == 1;
   }
   std::vector<FaceKey> crack_faces;
   for (const auto& f : split->crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
@@ -190,6 +193,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     // for the points as they are now.
     OpenTet& open = open_.at(unit);
     open.points = points;
+    open.traces = TracesOf(crack);
     open.smallest_volume = SmallestRestVolume(*mesh_, open.pieces);
     return {};
   }
@@ -219,24 +223,37 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   for (const TetId p : pieces) owner_[p] = unit;
   const double smallest_volume = SmallestRestVolume(*mesh_, pieces);
   const bool cone = split->kind == CrackSplitKind::kCone;
-  const bool opened = !openings.empty() || !to_open.empty();
-  open_[unit] = {
-      corners, source, std::move(pieces), std::move(crack_faces), std::move(openings), points,
-      cone,    opened, smallest_volume};
+  open_[unit] = {.corners = corners,
+                 .source = source,
+                 .pieces = std::move(pieces),
+                 .crack = std::move(crack_faces),
+                 .openings = std::move(openings),
+                 .points = points,
+                 .cone = cone,
+                 .opened_in_face = opened_in_face,
+                 .smallest_volume = smallest_volume,
+                 .traces = TracesOf(crack)};
   return to_part;
 }
 
-bool CrackCutter::SplitMissesTheBlade(const TetCrack& crack, const BladeIn& blade) const {
-  if (TracePoints(crack).empty()) return false;
-  if (blade.tip_inside) return true;
+CrackCutter::CrackTraces CrackCutter::TracesOf(const TetCrack& crack) {
+  CrackTraces traces;
+  traces.any = !TracePoints(crack).empty();
+  if (!traces.any) return traces;
   for (const int k : FacesHoldingTheTrace(crack)) {
     const auto& f = mesh::kTetFaces[k];
-    const FaceKey key = MakeFaceKey(crack.corners[f[0]], crack.corners[f[1]], crack.corners[f[2]]);
-    if (std::find(blade.crossed.begin(), blade.crossed.end(), key) != blade.crossed.end()) {
-      return true;
-    }
+    traces.holding.push_back(
+        MakeFaceKey(crack.corners[f[0]], crack.corners[f[1]], crack.corners[f[2]]));
   }
-  return false;
+  return traces;
+}
+
+bool CrackCutter::MissesTheBlade(const CrackTraces& traces, const BladeIn& blade) {
+  if (!traces.any) return false;
+  if (blade.tip_inside) return true;
+  return std::any_of(traces.holding.begin(), traces.holding.end(), [&](const FaceKey& key) {
+    return std::find(blade.crossed.begin(), blade.crossed.end(), key) != blade.crossed.end();
+  });
 }
 
 Eigen::Vector4d CrackCutter::ApexForGood(TetId unit, const TetCrack& crack) const {
@@ -278,20 +295,41 @@ CrackSplit CrackCutter::PiecesAsSplit(TetId unit) const {
 bool CrackCutter::PiecesStand(TetId unit, const std::array<FacePoints, 4>& points,
                               const BladeIn& blade) {
   const auto it = open_.find(unit);
-  if (it == open_.end() || it->second.opened || it->second.points != points) {
+  if (it == open_.end() || it->second.opened_in_face || it->second.points != points) {
     return false;
   }
-  // The apex first: the pieces' volumes are checked where it now is. (If they fail, the split
-  // made anew uses it again or leaves it to go with the unused temporary points.)
-  if (it->second.cone) TemporaryVertex(ApexPlace(unit), it->second.corners, blade.apex);
-  const std::vector<TetId>& pieces = it->second.pieces;
-  const double floor = 0.5 * it->second.smallest_volume;
-  if (std::all_of(pieces.begin(), pieces.end(),
+  // The apex first, then the points opening faces through it: the pieces' volumes are checked
+  // where they now are. (If they fail, the split made anew uses them again or leaves them to go
+  // with the unused temporary points.)
+  const OpenTet& open = it->second;
+  // Pieces with crack faces opened inside stand only as the cone from the blade's point that a
+  // split made anew would be again: a face has the blade's point beside its own, or a split
+  // without it would miss the blade (the blade may have left those reasons with its points
+  // unchanged: its tip come out, or gone from the face it came in by).
+  const auto beside = [](const FacePoints& p) { return p.beside.has_value(); };
+  if (!open.openings.empty() && !(open.cone && (std::any_of(points.begin(), points.end(), beside) ||
+                                                MissesTheBlade(open.traces, blade)))) {
+    return false;
+  }
+  if (open.cone) TemporaryVertex(ApexPlace(unit), open.corners, blade.apex);
+  for (const FaceKey& key : open.openings) {
+    TemporaryVertex(OpeningPlace(unit, key), open.corners, MiddleOf(open.corners, key));
+  }
+  const double floor = 0.5 * open.smallest_volume;
+  if (std::all_of(open.pieces.begin(), open.pieces.end(),
                   [&](TetId p) { return mesh::RestVolume(*mesh_, p) > floor; })) {
     return true;
   }
   temporary_used_.erase(ApexPlace(unit));
+  for (const FaceKey& key : open.openings) temporary_used_.erase(OpeningPlace(unit, key));
   return false;
+}
+
+Eigen::Vector4d CrackCutter::MiddleOf(const mesh::TetVertices& corners, const FaceKey& key) const {
+  const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
+  const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
+  const mesh::TetVertices& c = corners;
+  return geometry::BarycentricWeights(rest(c[0]), rest(c[1]), rest(c[2]), rest(c[3]), middle);
 }
 
 namespace {
@@ -316,10 +354,7 @@ int CrackCutter::OpenAtItsMiddle(TetId unit, const TetCrack& crack, const FaceKe
   const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
   VertexId point;
   if (sides == 2) {
-    const mesh::TetVertices& c = crack.corners;
-    point = TemporaryVertex(
-        OpeningPlace(unit, key), c,
-        geometry::BarycentricWeights(rest(c[0]), rest(c[1]), rest(c[2]), rest(c[3]), middle));
+    point = TemporaryVertex(OpeningPlace(unit, key), crack.corners, MiddleOf(crack.corners, key));
   } else {
     const auto in_face = [&](int k) {
       const std::vector<VertexId>& on = crack.face_vertices[k];

@@ -4,6 +4,7 @@
 #include <map>
 #include <vector>
 
+#include "absl/container/inlined_vector.h"
 #include "base/check.h"
 #include "cut/tet_split.h"
 #include "geometry/tet_measures.h"
@@ -66,7 +67,7 @@ void AddWholeFaceCracks(const TetCrack& crack, CrackSplit* split) {
 bool TilesFacesAsTheRule(const TetCrack& crack, const std::vector<TetVertices>& tets) {
   for (int k = 0; k < 4; ++k) {
     const std::vector<VertexId>& on_face = FaceVertices(crack, k);
-    std::vector<Triangle> made, rule;
+    absl::InlinedVector<Triangle, 16> made, rule;
     for (const TetVertices& t : tets) {
       for (const auto& f : mesh::kTetFaces) {
         const Triangle face = {t[f[0]], t[f[1]], t[f[2]]};

@@ -204,6 +204,75 @@ TEST(CrackCutterBlade, TheCrackReachesTheBladeInATetItPlungedThrough) {
   EXPECT_EQ(LeastCoverageMovingSideways({0.3, 0.3, 0.4}, 0.5, {0.05, -0.03, 0}), 1);
 }
 
+// A tip trembling inside a tet of a lattice, the blade slanted through the tet above it (as in
+// cutter_benchmark's ProgressivePoseInsideKTets/1): the cone from the tip stands (the same
+// pieces at every pose) while its apex moves with the tip, and the points opening its crack
+// faces (every corner of them on the crack's edge) move with those faces' middles; the mesh stays
+// valid at every pose.
+TEST(CrackCutterBlade, PiecesOpenedAtTheTipStandWhileTheTipTrembles) {
+  const TetMesh lattice =
+      *mesh::MakeBoxLattice({.cells_x = 2, .cells_y = 2, .cells_z = 8, .size = {0.02, 0.02, 0.08}});
+  TetMesh m = lattice;
+  CrackCutter cutter = *CrackCutter::Create(&m, 0.01, kLoose);
+  const auto blade_at = [](int k, double y) {
+    const Eigen::Vector3d tip(0.0063, y, 0.078);
+    return BladePose{0.01 * k, tip, tip + 0.012 * Eigen::Vector3d(0.0011 / 0.09, 0, 1)};
+  };
+  int k = 0;
+  for (double y = -0.005; y < 0.0047; y += 0.001)
+    ASSERT_TRUE(cutter.ApplyPose(blade_at(k++, y)).ok());
+  std::set<mesh::TetId> pieces;
+  for (int i = 0; i < 10; ++i, ++k) {
+    const BladePose pose = blade_at(k, 0.0047 + 0.0001 * (k % 2));
+    ASSERT_TRUE(cutter.ApplyPose(pose).ok());
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << i << ": " << mesh::ValidateMesh(m);
+    const std::set<mesh::TetId> now(m.tets().begin(), m.tets().end());
+    if (i == 0) pieces = now;
+    EXPECT_EQ(now, pieces) << "pose " << i;
+    // The tissue's tet holding the tip, and the points the cut made strictly inside it: the
+    // apex, at the tip, and the points opening crack faces through it, each the middle of the
+    // apex and two other vertices.
+    std::optional<mesh::TetId> holding;
+    for (const mesh::TetId t : lattice.tets()) {
+      const mesh::TetVertices& c = lattice.tet(t);
+      if (geometry::ContainsPoint(lattice.rest_position(c[0]), lattice.rest_position(c[1]),
+                                  lattice.rest_position(c[2]), lattice.rest_position(c[3]),
+                                  pose.tip)) {
+        holding = t;
+      }
+    }
+    ASSERT_TRUE(holding.has_value());
+    const mesh::TetVertices& c = lattice.tet(*holding);
+    const auto at = [&](int j) { return lattice.rest_position(c[j]); };
+    std::vector<mesh::VertexId> vertices(m.vertices().begin(), m.vertices().end());
+    std::vector<Eigen::Vector3d> openings;
+    bool apex = false;
+    for (const mesh::VertexId v : vertices) {
+      const Eigen::Vector3d& x = m.rest_position(v);
+      if (geometry::BarycentricWeights(at(0), at(1), at(2), at(3), x).minCoeff() <= 1e-9) continue;
+      if ((x - pose.tip).norm() < 1e-15) {
+        apex = true;
+      } else {
+        openings.push_back(x);
+      }
+    }
+    EXPECT_TRUE(apex) << "pose " << i;
+    EXPECT_FALSE(openings.empty()) << "pose " << i;
+    for (const Eigen::Vector3d& o : openings) {
+      bool middle = false;
+      for (const mesh::VertexId p : vertices) {
+        for (const mesh::VertexId q : vertices) {
+          const Eigen::Vector3d x = (pose.tip + m.rest_position(p) + m.rest_position(q)) / 3;
+          middle = middle || (x - o).norm() < 1e-15;
+        }
+      }
+      EXPECT_TRUE(middle) << "pose " << i << ": an opening at " << o.transpose();
+    }
+  }
+  cutter.Finish();
+  EXPECT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+}
+
 // Hand paths through liver2.msh whose blade trembled and hesitated with its tip in tets it had
 // come into by a face or plunged through (seeds 6, 8 and 10: 21, 13 and 25 poses on end whose own
 // step was not all cut at once, below the surface, where the crack lay in the face the blade came
