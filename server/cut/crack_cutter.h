@@ -221,8 +221,8 @@ class CrackCutter {
   std::vector<mesh::TetId> UnitsAround(const std::vector<mesh::VertexId>& origins) const;
   std::vector<mesh::TetVertices> CornersOfAll(const std::vector<mesh::TetId>& units) const;
 
-  // Whether the point `x` (rest positions) on the element of `origins` lies within kSnapReach of
-  // the tissue's edge there of a crack face made before, in a tet at one of `origins`: before the
+  // Whether the point `x` (rest positions) on the element of `origins` lies within Reach of the
+  // tets at it of a crack face made before, in a tet at one of `origins`: before the
   // oldest group there is now began (the blade's visit), and not one of an open unit's own crack
   // faces. The crack is there already.
   bool OnTheCrackAlready(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins) const;

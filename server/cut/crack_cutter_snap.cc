@@ -94,7 +94,10 @@ bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
   for (const auto& [root, since] : group_since_) visit = std::min(visit, since);
   // None made before the visit: nothing to look for.
   if (crack_faces_since_.empty() || crack_faces_since_.begin()->first >= visit) return false;
-  return CrackFaceWithin(x, origins, kSnapReach * LengthsOf(origins).tissue_edge(),
+  // The reach is that of the tets there (the coverage of a cut is judged by its tet's mean edge):
+  // an element's own length is longer for a tet's long edge, and a crack farther than a tet's
+  // tolerance from the blade does not cover what it cuts.
+  return CrackFaceWithin(x, origins, Reach(UnitsAround({origins.begin(), origins.end()})),
                          [&](TetId t, const FaceKey& key, const CrackFace& face) {
                            if (face.since >= visit) return false;
                            // An open unit's own crack faces are the crack being made, up to the

@@ -115,6 +115,33 @@ TEST(CrackCutter, CuttingAgainBesideTheCrackAddsNothing) {
   }
 }
 
+// A hand that comes back beside its cut farther than its tets' tolerance cuts again: the crack is
+// "there already" only within the reach of the tets at a crossing (of their mean edge, as
+// coverage is judged), not of the crossed element's own length. Along the lattice's hand path of
+// seed 40 the blade came back 3.8 mm from its first crack (0.30 of the tets' mean edge, 0.22 of
+// the diagonal it crossed): measured by the diagonal, the first crack was taken to cover it, and
+// 165 poses on end left their own step uncut below the surface (0.982 covered at the end).
+TEST(CrackCutter, ABladeBackBesideItsCutFartherThanItsTetsToleranceCutsAgain) {
+  const TetMesh lattice =
+      *mesh::MakeBoxLattice({.cells_x = 4, .cells_y = 6, .cells_z = 4, .size = {0.04, 0.06, 0.04}});
+  const std::vector<BladePose> poses = lab::MakeHandPath(lattice, lab::PathFamily::kHand, 40);
+  for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+    TetMesh m = lattice;
+    CrackCutter cutter =
+        *CrackCutter::Create(&m, mesh::MeanEdgeLength(m), LimitsFor(m), {.mode = mode});
+    lab::FidelityMeter meter(lattice);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      ASSERT_TRUE(cutter.ApplyPose(poses[i]).ok()) << i;
+      if (i > 0) meter.AddStep(poses[i - 1], poses[i]);
+    }
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    const lab::Fidelity fidelity = meter.Measure(meter.FindCrack(m));
+    EXPECT_EQ(fidelity.coverage_below_surface, 1) << (mode == CutMode::kDeferred);
+    EXPECT_EQ(fidelity.overcut_faces, 0u);
+  }
+}
+
 // A blade trembling back and forth across edges cuts each once (deferred: the first crossing
 // is the cut, later ones are the same cut): the same tets as one clean pass.
 TEST(CrackCutter, TrembleAcrossEdgesCutsThemOnce) {
