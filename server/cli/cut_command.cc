@@ -33,7 +33,7 @@ namespace {
 
 constexpr absl::string_view kCutUsage =
     "kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred] [--check every|end] "
-    "[--uncovered OUT.csv] [--overcut OUT.csv] "
+    "[--uncovered OUT.csv] [--overcut OUT.csv] [--lagging OUT.csv] "
     "[--min-temporary-height F] [--snap F] [--trace OUT.jsonl] [--dump-every-pose DIR] [--json]";
 
 double TotalRestVolume(const mesh::TetMesh& m) {
@@ -170,6 +170,15 @@ class PoseChecks {
                                                      1);
       }
       report_->set_min_step_coverage(std::min(report_->min_step_coverage(), covered));
+      if (!options_.lagging_path.empty()) {
+        for (const auto& s : fidelity_->StepUncovered(crack, i - 1)) {
+          absl::StrAppend(&lagging_, i, ",", s.point.x(), ",", s.point.y(), ",", s.point.z(), ",",
+                          s.edge, ",", s.tet, ",", s.at_surface ? 0 : 1, "\n");
+        }
+      }
+    }
+    if (withdrawn && !options_.lagging_path.empty()) {
+      if (absl::Status s = mesh::WriteTextFile(options_.lagging_path, lagging_); !s.ok()) return s;
     }
     if (trace_ != nullptr) Trace(i, valid, crack_area, covered, covered_below);
     if (options_.dump_directory.empty()) return absl::OkStatus();
@@ -226,6 +235,7 @@ class PoseChecks {
   mesh::TetMesh uncut_;
   std::optional<mesh::CutMeshCheck> incremental_;
   std::FILE* trace_ = nullptr;
+  std::string lagging_ = "pose,x,y,z,edge,tissue_tet,below_surface\n";  // --lagging's rows
 };
 
 bool AtRest(const mesh::TetMesh& m) {
@@ -400,6 +410,7 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
        {std::pair<absl::string_view, std::string*>{"--trace", &options.trace_path},
         {"--uncovered", &options.uncovered_path},
         {"--overcut", &options.overcut_path},
+        {"--lagging", &options.lagging_path},
         {"--dump-every-pose", &options.dump_directory}}) {
     absl::StatusOr<std::optional<std::vector<absl::string_view>>> value = rest.TakeOption(flag, 1);
     if (!value.ok()) return value.status();
@@ -410,8 +421,13 @@ absl::StatusOr<std::string> RunCutCommand(const std::vector<absl::string_view>& 
   if (!check.ok()) return check.status();
   if (check->has_value()) {
     options.check = **check == "every" ? CheckWhen::kEveryPose : CheckWhen::kEnd;
-  } else if (!options.trace_path.empty() || !options.dump_directory.empty()) {
-    options.check = CheckWhen::kEveryPose;  // a trace or dump is of every pose
+    if (options.check == CheckWhen::kEnd && !options.lagging_path.empty()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--lagging is of every pose: it needs --check every\nusage: ", kCutUsage));
+    }
+  } else if (!options.trace_path.empty() || !options.dump_directory.empty() ||
+             !options.lagging_path.empty()) {
+    options.check = CheckWhen::kEveryPose;  // a trace, dump or lag is of every pose
   }
   absl::StatusOr<std::optional<std::vector<absl::string_view>>> path_arg =
       rest.TakeOption("--path", 1);

@@ -40,6 +40,9 @@ struct CutOptions {
   // Non-empty: the crack faces farther than the tolerance from the swept surface, as CSV (the
   // corners, the distance of each and of the middle in local edges, the local edge).
   std::string overcut_path;
+  // Non-empty (checks every pose): each pose's own samples no crack face covers after it, as CSV
+  // (pose, x, y, z, local edge, the tissue's tet holding it, whether it is below the surface).
+  std::string lagging_path;
   // Non-empty: one JSON line per pose (and one after the blade is withdrawn): the Table 1
   // cases of the tets the blade is in, tets alive, valid, and the step's coverage.
   std::string trace_path;

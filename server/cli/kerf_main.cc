@@ -26,6 +26,7 @@ constexpr absl::string_view kKerfUsage =
     "       kerf static DECK.inp [--json]\n"
     "       kerf cut MESH --path PATH.json --out OUT.vtu [--progressive|--deferred]\n"
     "                [--check every|end] [--uncovered OUT.csv] [--overcut OUT.csv]\n"
+    "                [--lagging OUT.csv]\n"
     "                [--min-temporary-height F] [--snap F] [--trace OUT.jsonl]\n"
     "                [--dump-every-pose DIR] [--json]\n"
     "       kerf path hand|vertices|edges|face-plane MESH --out PATH.json [--seed N]\n"

@@ -373,6 +373,16 @@ double FidelityMeter::StepCoverageBelowSurface(const CrackFaces& crack, std::siz
   return below == 0 ? 1 : static_cast<double>(covered) / static_cast<double>(below);
 }
 
+std::vector<FidelityMeter::UncoveredSample> FidelityMeter::StepUncovered(const CrackFaces& crack,
+                                                                         std::size_t k) const {
+  std::vector<UncoveredSample> uncovered;
+  for (std::size_t i = StepBegin(k); i < step_end_[k]; ++i) {
+    const Sample& s = step_samples_[i];
+    if (!Covered(crack, s)) uncovered.push_back({s.point, s.edge, s.tet, s.at_surface});
+  }
+  return uncovered;
+}
+
 std::size_t FidelityMeter::crossed_tets() const {
   std::vector<std::uint32_t> tets;
   for (const Piece& p : pieces_) tets.push_back(p.tet);

@@ -116,6 +116,15 @@ class FidelityMeter {
   // The same for step k's samples below the surface (farther than the tolerance from the
   // tissue's boundary; 1 if it has none).
   double StepCoverageBelowSurface(const CrackFaces& crack, std::size_t k) const;
+  // Step k's samples the crack does not cover: where, the local edge length (m), the tissue's tet
+  // holding it, and whether it lies within the tolerance of the tissue's boundary.
+  struct UncoveredSample {
+    Eigen::Vector3d point;
+    double edge;
+    std::uint32_t tet;
+    bool at_surface;
+  };
+  std::vector<UncoveredSample> StepUncovered(const CrackFaces& crack, std::size_t k) const;
   std::size_t StepSamples(std::size_t k) const { return step_end_[k] - StepBegin(k); }
 
   std::size_t steps() const { return step_end_.size(); }

@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
 #include "cli/kerf_command.h"
 #include "google/protobuf/util/json_util.h"
 #include "kerf/v1/cut_report.pb.h"
@@ -72,6 +75,29 @@ TEST(KerfCutFidelity, CutReportsCoverageOfTheSweptSurface) {
   // Deferred, the crack waits for the blade to leave a tet: steps lag, below the surface too.
   EXPECT_GT(hand.poses_not_covered_below_surface(), 0u);
   EXPECT_LE(hand.poses_not_covered_below_surface(), hand.poses_not_covered());
+  // --lagging: a row for each sample of each pose's own step left uncovered after that pose, so
+  // at least one for each pose lagging, below the surface among them.
+  const kerf::v1::CutReport lagging =
+      cut(dir + "/hand.json", absl::StrCat(" --deferred --lagging ", dir, "/lagging.csv"));
+  EXPECT_EQ(lagging.check(), "every");
+  EXPECT_EQ(lagging.poses_not_covered(), hand.poses_not_covered());
+  std::ifstream lag(dir + "/lagging.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(lag, line));
+  EXPECT_EQ(line, "pose,x,y,z,edge,tissue_tet,below_surface");
+  std::set<int> poses_lagging, below_surface;
+  while (std::getline(lag, line)) {
+    const std::vector<std::string> cells = absl::StrSplit(line, ',');
+    ASSERT_EQ(cells.size(), 7u) << line;
+    poses_lagging.insert(std::stoi(cells[0]));
+    if (cells[6] == "1") below_surface.insert(std::stoi(cells[0]));
+  }
+  EXPECT_EQ(poses_lagging.size(), hand.poses_not_covered());
+  EXPECT_EQ(below_surface.size(), hand.poses_not_covered_below_surface());
+  EXPECT_THAT(Kerf(absl::StrCat("cut ", dir, "/paper.msh --path ", dir, "/hand.json --out ", dir,
+                                "/x.vtu --check end --lagging ", dir, "/x.csv"))
+                  .output,
+              HasSubstr("--lagging is of every pose: it needs --check every"));
   // Progressively (the default) the cut is where the hand went, valid after every pose.
   const kerf::v1::CutReport progressive = cut(dir + "/hand.json", " --check every");
   EXPECT_EQ(progressive.mode(), "progressive");
