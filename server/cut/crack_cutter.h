@@ -375,8 +375,9 @@ class CrackCutter {
                                         std::span<const FaceKey> to_open = {});
   // Whether the open unit's pieces stand as they are with the blade in it at `points`: the
   // same points as when they were made (only temporary ones moved), no crack face in a face of it
-  // opened, and
-  // every piece still holding over half of OpenTet::smallest_volume (a piece thinned further
+  // opened, crack faces opened inside only in the cone from the blade's point that a split made
+  // anew would be again (SplitsAsTheBladesCone), and every piece still holding over half of
+  // OpenTet::smallest_volume (a piece thinned further
   // by the moving points, the layout is chosen again: a sliver the tissue inverts makes the
   // corotational law pump energy into it). A cone's apex then moves with the blade, and the
   // points opening crack faces inside it with the middles of those faces.
@@ -401,16 +402,18 @@ class CrackCutter {
                       CrackSplit* split);
   // The middle of the face `key` (rest positions), barycentric on `corners`.
   Eigen::Vector4d MiddleOf(const mesh::TetVertices& corners, const FaceKey& key) const;
+  static CrackTraces TracesOf(const TetCrack& crack);
   // Whether a split of the unit by the crack's points alone (no point of the blade's inside)
   // would leave the blade off the crack: where the crack has traces and the tip is inside (no
   // such split has the tip on its crack; the paper's Table 1 splits a tet at the tip), or where
   // every trace lies in one face the blade crosses (it came in by that face: the crack would lie
   // in it; a blade lying in the face's plane crosses it not, and its crack does lie there).
-  bool SplitMissesTheBlade(const TetCrack& crack, const BladeIn& blade) const {
-    return MissesTheBlade(TracesOf(crack), blade);
-  }
-  static CrackTraces TracesOf(const TetCrack& crack);
   static bool MissesTheBlade(const CrackTraces& traces, const BladeIn& blade);
+  // Whether the unit, with the blade in it at `points`, splits as the cone from the blade's point:
+  // a face has the blade's point beside its own (no minimal case fits), or a split of the points
+  // alone would miss the blade.
+  static bool SplitsAsTheBladesCone(const std::array<FacePoints, 4>& points,
+                                    const CrackTraces& traces, const BladeIn& blade);
   // The unit's case of the paper's Table 1 with the blade in it (0: none of the eleven).
   int TableCase(const mesh::TetVertices& corners, const BladeIn& blade) const;
   // Whether the pieces (live tets) are the split's tets, up to copies and orientation.

@@ -128,14 +128,19 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     return {};
   }
   const TetCrack crack = MakeTetCrack(corners, points);
+  const CrackTraces traces = TracesOf(crack);
   const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
   // Pieces that stood this pose are opened as they are (made anew, the split could differ
-  // where it is chosen by shape, and lack the faces to open).
+  // where it is chosen by shape, and lack the faces to open). While the blade is in the unit the
+  // crack reaches it: where a split without the blade's point would miss the blade, the unit
+  // splits as the cone from that point.
   const bool stood = stood_.contains(unit);
-  std::optional<CrackSplit> split = stood ? PiecesAsSplit(unit) : SplitWithoutApex(crack, rest);
-  // While the blade is in the unit the crack reaches it: a split without the blade's point that
-  // misses the blade gives way to the cone from that point.
-  if (blade != nullptr && !stood && split && SplitMissesTheBlade(crack, *blade)) split.reset();
+  std::optional<CrackSplit> split;
+  if (stood) {
+    split = PiecesAsSplit(unit);
+  } else if (blade == nullptr || !SplitsAsTheBladesCone(points, traces, *blade)) {
+    split = SplitWithoutApex(crack, rest);
+  }
   // For good, a minimal split with slivers gives way to a cone that has fewer.
   std::optional<Eigen::Vector4d> cone_apex;
   if (blade == nullptr && !stood && split) {
@@ -193,7 +198,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     // for the points as they are now.
     OpenTet& open = open_.at(unit);
     open.points = points;
-    open.traces = TracesOf(crack);
+    open.traces = traces;
     open.smallest_volume = SmallestRestVolume(*mesh_, open.pieces);
     return {};
   }
@@ -232,7 +237,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
                  .cone = cone,
                  .opened_in_face = opened_in_face,
                  .smallest_volume = smallest_volume,
-                 .traces = TracesOf(crack)};
+                 .traces = traces};
   return to_part;
 }
 
@@ -246,6 +251,13 @@ CrackCutter::CrackTraces CrackCutter::TracesOf(const TetCrack& crack) {
         MakeFaceKey(crack.corners[f[0]], crack.corners[f[1]], crack.corners[f[2]]));
   }
   return traces;
+}
+
+bool CrackCutter::SplitsAsTheBladesCone(const std::array<FacePoints, 4>& points,
+                                        const CrackTraces& traces, const BladeIn& blade) {
+  return std::any_of(points.begin(), points.end(),
+                     [](const FacePoints& p) { return p.beside.has_value(); }) ||
+         MissesTheBlade(traces, blade);
 }
 
 bool CrackCutter::MissesTheBlade(const CrackTraces& traces, const BladeIn& blade) {
@@ -298,19 +310,16 @@ bool CrackCutter::PiecesStand(TetId unit, const std::array<FacePoints, 4>& point
   if (it == open_.end() || it->second.opened_in_face || it->second.points != points) {
     return false;
   }
+  const OpenTet& open = it->second;
+  // Pieces with crack faces opened inside stand only as the cone a split made anew would be
+  // again (the blade may have left that cone's reasons with its points unchanged: its tip come
+  // out, or gone from the face it came in by).
+  if (!open.openings.empty() && !(open.cone && SplitsAsTheBladesCone(points, open.traces, blade))) {
+    return false;
+  }
   // The apex first, then the points opening faces through it: the pieces' volumes are checked
   // where they now are. (If they fail, the split made anew uses them again or leaves them to go
   // with the unused temporary points.)
-  const OpenTet& open = it->second;
-  // Pieces with crack faces opened inside stand only as the cone from the blade's point that a
-  // split made anew would be again: a face has the blade's point beside its own, or a split
-  // without it would miss the blade (the blade may have left those reasons with its points
-  // unchanged: its tip come out, or gone from the face it came in by).
-  const auto beside = [](const FacePoints& p) { return p.beside.has_value(); };
-  if (!open.openings.empty() && !(open.cone && (std::any_of(points.begin(), points.end(), beside) ||
-                                                MissesTheBlade(open.traces, blade)))) {
-    return false;
-  }
   if (open.cone) TemporaryVertex(ApexPlace(unit), open.corners, blade.apex);
   for (const FaceKey& key : open.openings) {
     TemporaryVertex(OpeningPlace(unit, key), open.corners, MiddleOf(open.corners, key));
@@ -328,8 +337,8 @@ bool CrackCutter::PiecesStand(TetId unit, const std::array<FacePoints, 4>& point
 Eigen::Vector4d CrackCutter::MiddleOf(const mesh::TetVertices& corners, const FaceKey& key) const {
   const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
   const Eigen::Vector3d middle = (rest(key[0]) + rest(key[1]) + rest(key[2])) / 3;
-  const mesh::TetVertices& c = corners;
-  return geometry::BarycentricWeights(rest(c[0]), rest(c[1]), rest(c[2]), rest(c[3]), middle);
+  return geometry::BarycentricWeights(rest(corners[0]), rest(corners[1]), rest(corners[2]),
+                                      rest(corners[3]), middle);
 }
 
 namespace {
