@@ -78,9 +78,10 @@ std::vector<TetId> BladeCrossings::NearSweep(const BladePose& from, const BladeP
   // edge at one pose or the other.
   const double move = std::max((to.tip - from.tip).norm(), (to.heel - from.heel).norm());
   const double within = margin + move;
+  const bool still = from.tip == to.tip && from.heel == to.heel;  // the blade where it is
   const auto meets = [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
     return geometry::SegmentMeetsBox(from.tip, from.heel, lo, hi, within) ||
-           geometry::SegmentMeetsBox(to.tip, to.heel, lo, hi, within);
+           (!still && geometry::SegmentMeetsBox(to.tip, to.heel, lo, hi, within));
   };
   const Eigen::Vector3d low =
       from.tip.cwiseMin(from.heel).cwiseMin(to.tip).cwiseMin(to.heel).array() - box_margin;
@@ -196,7 +197,8 @@ absl::Status BladeCrossings::Remember(const std::vector<VertexId>& vertices) {
   previous_.resize(mesh_->vertex_index_bound());
   remembered_at_.resize(mesh_->vertex_index_bound(), 0);
   for (const VertexId v : vertices) {
-    if (!mesh_->IsAlive(v)) continue;
+    // (A vertex is a corner of several of the tets whose vertices are given.)
+    if (!mesh_->IsAlive(v) || remembered_at_[Index(v)] == remembered_) continue;
     previous_[Index(v)] = mesh_->current_position(v);
     remembered_at_[Index(v)] = remembered_;
   }

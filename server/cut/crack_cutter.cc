@@ -101,8 +101,12 @@ mesh::TetVertices CrackCutter::CornersOf(TetId unit) const {
 mesh::TetVertices CrackCutter::PlacedCorners(TetId unit) const {
   const auto open = open_.find(unit);
   if (open == open_.end()) return mesh_->tet(unit);
-  std::array<bool, 4> found{};
-  return NamedIn(open->second.pieces, open->second.corners, &found);
+  auto& placed = open->second.placed;
+  if (!placed || placed->first != edits_) {
+    std::array<bool, 4> found{};
+    placed.emplace(edits_, NamedIn(open->second.pieces, open->second.corners, &found));
+  }
+  return placed->second;
 }
 
 std::array<VertexId, 4> CrackCutter::NamedIn(std::span<const TetId> tets,
@@ -210,7 +214,7 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
     } else {
       const absl::flat_hash_map<TetId, BladeIn> blade = BladeUnitsAt(pose);
       KeepEdgePointsLeft(blade, &touched);
-      KeepFarthestFaceCrossings(&pose, near, &touched);
+      KeepFarthestFaceCrossings(&blade, &touched);
       // Split: the units with new points, those the blade is in, and those it was in.
       touched.insert(touched.end(), blade_units_.begin(), blade_units_.end());
       blade_units_.clear();
@@ -226,10 +230,12 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
   previous_ = pose;
   std::vector<VertexId> near_blade;
   const double around = 0.1 * (pose.heel - pose.tip).norm();
-  for (const TetId t : crossings_.NearSweep(pose, pose, around, around)) {
+  const std::vector<TetId> near_tets = crossings_.NearSweep(pose, pose, around, around);
+  near_blade.reserve(4 * near_tets.size());
+  for (const TetId t : near_tets) {
     for (const VertexId v : mesh_->tet(t)) {
       near_blade.push_back(v);
-      near_blade.push_back(parting_.Origin(v));
+      if (const VertexId origin = parting_.Origin(v); origin != v) near_blade.push_back(origin);
     }
   }
   last_pose_.open_tets = open_.size();
@@ -255,7 +261,7 @@ void CrackCutter::Finish() {
   Join(touched);
   if (mode_ == CutMode::kProgressive) {
     KeepEdgePointsLeft({}, &touched);
-    KeepFarthestFaceCrossings(nullptr, {}, &touched);
+    KeepFarthestFaceCrossings(nullptr, &touched);
     touched.insert(touched.end(), blade_units_.begin(), blade_units_.end());
     blade_units_.clear();
     SplitUnits(std::move(touched), {});

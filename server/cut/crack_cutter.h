@@ -146,6 +146,7 @@ class CrackCutter {
     // by a split made anew (m^3; see PiecesStand).
     double smallest_volume = 0;
     CrackTraces traces;  // of the crack at `points`
+    mutable std::optional<std::pair<std::uint64_t, mesh::TetVertices>> placed;  // at edits_
   };
   // The blade's points in a tet it meets now.
   struct BladeIn {
@@ -205,7 +206,7 @@ class CrackCutter {
   mesh::TetVertices CornersOf(mesh::TetId unit) const;  // origins
   // The ids the unit's tets use for its corners, in CornersOf's order: where a corner was parted,
   // the copy on the unit's side, whose positions and state are the unit's (the first found where
-  // the unit's own crack parts the corner).
+  // the unit's own crack parts the corner). Kept in the open unit until the tets change.
   mesh::TetVertices PlacedCorners(mesh::TetId unit) const;
   std::vector<mesh::TetVertices> PlacedCornersOfAll(const std::vector<mesh::TetId>& units) const;
   // Crossings found on placed ids, named by origins.
@@ -346,14 +347,15 @@ class CrackCutter {
   // any crossing: what was cut stays cut.
   void KeepEdgePointsLeft(const absl::flat_hash_map<mesh::TetId, BladeIn>& blade,
                           std::vector<mesh::TetId>* touched);
-  // Progressive: a face of the units in groups among `near` (those with points) the blade's edge
-  // crossed and at `pose` no longer does: where its crossing reached farther than kSnapReach of
-  // the tissue's edge there from the crack the points for good of the tets at the face span, and
-  // from every crack face at the face's corners (the blade went into a tet and came back the way
-  // it went: a reversal, a hairpin), the farthest such crossing becomes the face's point, snapped
-  // as any crossing, so the crack reaches where the blade did. Crossings on an edge of the face
-  // are the edge's (KeepEdgePointsLeft). `pose` null: every face it crossed (it is withdrawn).
-  void KeepFarthestFaceCrossings(const BladePose* pose, const std::vector<mesh::TetId>& near,
+  // Progressive: a face of the units in groups (those with points) the blade's edge crossed and
+  // at this pose (`blade`, BladeUnitsAt's crossings) no longer does: where its crossing reached
+  // farther than kSnapReach of the tissue's edge there from the crack the points for good of the
+  // tets at the face span, and from every crack face at the face's corners (the blade went into a
+  // tet and came back the way it went: a reversal, a hairpin), the farthest such crossing becomes
+  // the face's point, snapped as any crossing, so the crack reaches where the blade did.
+  // Crossings on an edge of the face are the edge's (KeepEdgePointsLeft). `blade` null: every
+  // face it crossed (it is withdrawn).
+  void KeepFarthestFaceCrossings(const absl::flat_hash_map<mesh::TetId, BladeIn>* blade,
                                  std::vector<mesh::TetId>* touched);
   // Of `crossings` (barycentric on the face key's vertices), the one farthest from the crack the
   // points for good of the tets at the face span (each tet's corners on the crack, edge and face
@@ -430,7 +432,8 @@ class CrackCutter {
   mesh::VertexId FacePointVertex(const FaceKey& key);
   // New points (and temporary ones moved) take their positions, and the state the simulation
   // gives them, from `weights` on `origins` as their own side's tets name them (PlaceOnItsSide;
-  // a new point once parting is done).
+  // a new point once parting is done). The point at `place`, made or moved; asked again in one
+  // split of units with the same recipe (each unit at its edge or face asks), left as it is.
   mesh::VertexId TemporaryVertex(std::uint64_t place, const std::array<mesh::VertexId, 4>& origins,
                                  const Eigen::Vector4d& weights);
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& origins,
@@ -558,7 +561,11 @@ class CrackCutter {
   absl::flat_hash_map<mesh::TetId, std::size_t> met_at_;
   absl::flat_hash_set<mesh::TetId> fresh_;  // tets made from origins since the last parting
   absl::flat_hash_map<mesh::TetId, OpenTet> open_;
-  absl::flat_hash_set<mesh::TetId> stood_;            // open units whose pieces stood this pose
+  absl::flat_hash_set<mesh::TetId> stood_;  // open units whose pieces stood this pose
+  // Edits of the tets (Replace, Repart), and their count and the blade's units when no crack face
+  // was found shut: with both the same, none is (SplitUnits).
+  std::uint64_t edits_ = 0;
+  std::optional<std::pair<std::uint64_t, std::vector<mesh::TetId>>> none_shut_at_;
   std::vector<mesh::TetId> blade_units_;              // the units the blade was in at the last pose
   absl::flat_hash_map<EdgeKey, double> blade_edges_;  // its temporary edge points then
   absl::flat_hash_set<EdgeKey> advancing_;            // those standing in for edges' points

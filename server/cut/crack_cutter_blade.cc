@@ -137,8 +137,8 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
     return std::nullopt;
   }
   BladeIn in;
-  bool meets = geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip) ||
-               geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.heel);
+  in.tip_inside = geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip);
+  bool meets = in.tip_inside || geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.heel);
   double first = 1, last = 0;  // the blade's chord through the tet, along it from the tip
   for (const auto& f : mesh::kTetFaces) {
     // Each face's crossing is found once, on its vertices in key order, so the two tets at it
@@ -190,9 +190,8 @@ std::optional<CrackCutter::BladeIn> CrackCutter::BladeInUnit(TetId unit, const B
   }
   if (!meets) return std::nullopt;
   Eigen::Vector3d point = 0.25 * (x[0] + x[1] + x[2] + x[3]);
-  if (geometry::ContainsPoint(x[0], x[1], x[2], x[3], pose.tip)) {
+  if (in.tip_inside) {
     point = pose.tip;
-    in.tip_inside = true;
   } else if (first <= last) {
     point = pose.tip + 0.5 * (first + last) * (pose.heel - pose.tip);
   }
@@ -223,33 +222,29 @@ double DistanceToSpan(const Eigen::Vector3d& x, const std::vector<Eigen::Vector3
 
 }  // namespace
 
-void CrackCutter::KeepFarthestFaceCrossings(const BladePose* pose, const std::vector<TetId>& near,
+void CrackCutter::KeepFarthestFaceCrossings(const absl::flat_hash_map<TetId, BladeIn>* blade,
                                             std::vector<TetId>* touched) {
   absl::flat_hash_set<FaceKey, FaceKeyHash> now;
-  if (pose != nullptr) {
-    std::vector<TetId> cracked;
-    for (const TetId u : near) {
-      if (group_of_.contains(u)) cracked.push_back(u);
-    }
-    Crossings crossed;
-    crossed.faces = crossings_.FacesCrossedBy(
-        *pose, PlacedCornersOfAll(cracked), [&](const std::array<VertexId, 3>& f) {
-          return face_points_.contains(parting_.OriginKey(f[0], f[1], f[2]));
-        });
-    for (const FaceCrossing& c : ByOrigins(std::move(crossed)).faces) {
-      // On an edge of the face (in its plane), the blade's crossing is the edge's
-      // (KeepEdgePointsLeft). A face with every corner on the crack lies on it (the blade sweeping
-      // in its plane).
-      if (c.barycentric.minCoeff() <= kMinTemporaryWeight ||
-          std::all_of(c.face.begin(), c.face.end(), [&](VertexId v) { return OnTheCrack(v); })) {
-        continue;
-      }
-      if (!now.insert(c.face).second) continue;
-      std::vector<Eigen::Vector3d>& kept = crossed_faces_[c.face];
-      if (std::none_of(kept.begin(), kept.end(), [&](const Eigen::Vector3d& b) {
-            return (b - c.barycentric).lpNorm<Eigen::Infinity>() <= kMinTemporaryWeight;
-          })) {
-        kept.push_back(c.barycentric);
+  if (blade != nullptr) {
+    for (const auto& [u, in] : *blade) {
+      if (!group_of_.contains(u)) continue;
+      for (const auto& crossing : in.faces) {
+        const FaceKey& face = crossing.first;
+        const Eigen::Vector3d& barycentric = crossing.second;
+        // On an edge of the face (in its plane), the blade's crossing is the edge's
+        // (KeepEdgePointsLeft). A face with every corner on the crack lies on it (the blade
+        // sweeping in its plane).
+        if (barycentric.minCoeff() <= kMinTemporaryWeight ||
+            std::all_of(face.begin(), face.end(), [&](VertexId v) { return OnTheCrack(v); })) {
+          continue;
+        }
+        if (!now.insert(face).second) continue;
+        std::vector<Eigen::Vector3d>& kept = crossed_faces_[face];
+        if (std::none_of(kept.begin(), kept.end(), [&](const Eigen::Vector3d& b) {
+              return (b - barycentric).lpNorm<Eigen::Infinity>() <= kMinTemporaryWeight;
+            })) {
+          kept.push_back(barycentric);
+        }
       }
     }
   }

@@ -149,12 +149,20 @@ VertexId CrackCutter::FacePointVertex(const FaceKey& key) {
 
 VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<VertexId, 4>& origins,
                                       const Eigen::Vector4d& weights) {
-  temporary_used_.insert(place);
+  const bool placed_this_pose = !temporary_used_.insert(place).second;
   const auto it = temporary_.find(place);
   if (it == temporary_.end() || !mesh_->IsAlive(it->second)) {
     return temporary_[place] = MakeVertex(origins, weights);
   }
-  recipe_[it->second] = {origins, weights, ScaleOf(origins, weights)};
+  PointRecipe& recipe = recipe_[it->second];
+  // Each unit at an edge or a face asks for its point: placed once a pose where they agree.
+  if (placed_this_pose && recipe.origins == origins && recipe.weights == weights) {
+    return it->second;
+  }
+  // The scale reads only the origins the weights use.
+  const bool same_origins =
+      recipe.origins == origins && ((recipe.weights.array() != 0) == (weights.array() != 0)).all();
+  recipe = {origins, weights, same_origins ? recipe.scale : ScaleOf(origins, weights)};
   if (parting_.HasCopies(it->second)) {
     // Parted (a point opening a crack face): its copies lie on the two sides of an opening, so
     // each keeps its own displacement, and the opening stays as open as the tissue made it.

@@ -48,14 +48,21 @@ void CrackCutter::SplitUnits(std::vector<TetId> units,
   Repart(origins);
   // Crack faces parting left shut open at a point of their own, so the crack opens up to the
   // blade and the tip's path however thin it is in a tet.
+  // (Only the tets and the blade's units tell which are shut: unchanged, none is again.)
+  std::vector<TetId> with_blade;
+  for (const auto& [u, in] : blade) with_blade.push_back(u);
+  std::sort(with_blade.begin(), with_blade.end());
   absl::flat_hash_map<TetId, std::vector<FaceKey>> shut;
-  for (const TetId u : units) {
-    if (!open_.contains(u) || !blade_in(u)) continue;
-    for (const ShutFace& face : ShutCrackFaces(u, blade)) {
-      shut[u].push_back(face.key);
-      if (face.beside) shut[*face.beside].push_back(face.key);
+  if (!none_shut_at_ || none_shut_at_->first != edits_ || none_shut_at_->second != with_blade) {
+    for (const TetId u : units) {
+      if (!open_.contains(u) || !blade_in(u)) continue;
+      for (const ShutFace& face : ShutCrackFaces(u, blade)) {
+        shut[u].push_back(face.key);
+        if (face.beside) shut[*face.beside].push_back(face.key);
+      }
     }
   }
+  if (shut.empty()) none_shut_at_.emplace(edits_, std::move(with_blade));
   std::vector<TetId> again;
   for (const auto& [u, keys] : shut) again.push_back(u);
   std::sort(again.begin(), again.end());  // the same points whatever the map's order
@@ -237,7 +244,8 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
                  .cone = cone,
                  .opened_in_face = opened_in_face,
                  .smallest_volume = smallest_volume,
-                 .traces = traces};
+                 .traces = traces,
+                 .placed = std::nullopt};
   return to_part;
 }
 
@@ -456,6 +464,7 @@ std::vector<TetId> CrackCutter::Replace(TetId unit, const std::vector<mesh::TetV
     old = it->second.pieces;
   }
   CountPieces(source, old.size(), pieces.size());
+  ++edits_;
   for (const TetId t : old) {
     source_tet_.erase(t);
     owner_.erase(t);
@@ -524,6 +533,7 @@ void CrackCutter::Repart(const std::vector<VertexId>& origins) {
       std::replace(members.begin(), members.end(), old_tet, new_tet);
     }
   }
+  if (!changes.made.empty() || !changes.removed.empty() || !changes.replaced.empty()) ++edits_;
   // A copy takes the place and state of the vertex its tets used; a copy of a point the cut
   // made then moves to where its own side has the point (the sides of an opened crack are apart:
   // a point on an edge lying in the crack, cut again, say), after the copies it is placed on:

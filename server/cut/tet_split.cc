@@ -326,24 +326,32 @@ TetSplit SplitCrackThreeEdges(const mesh::TetVertices& corners, const std::vecto
     }
     const std::array<VertexId, 7> apexes_c = {va, vc, ab_a, bc_c, cd_c, *f_p, *f_q};
     const std::array<VertexId, 7> apexes_b = {vb, vd, ab_b, bc_b, cd_d, *f_p, *f_q};
-    for (const VertexId apex_c : apexes_c) {
-      for (const VertexId apex_b : apexes_b) {
-        std::vector<mesh::TetVertices> tets = Cone(apex_c, near_c);
-        const std::vector<mesh::TetVertices> far = Cone(apex_b, near_b);
-        tets.insert(tets.end(), far.begin(), far.end());
-        tets.push_back({va, vd, *f_p, *f_q});
-        if (tets.size() > best_count) continue;
+    std::array<std::vector<mesh::TetVertices>, 7> cones_c, cones_b;
+    for (int i = 0; i < 7; ++i) {
+      cones_c[i] = Cone(apexes_c[i], near_c);
+      cones_b[i] = Cone(apexes_b[i], near_b);
+    }
+    const mesh::TetVertices between = {va, vd, *f_p, *f_q};
+    for (const std::vector<mesh::TetVertices>& near : cones_c) {
+      for (const std::vector<mesh::TetVertices>& far : cones_b) {
+        const std::size_t pieces = near.size() + far.size() + 1;
+        if (pieces > best_count) continue;
         double total = 0, smallest = std::numeric_limits<double>::infinity();
-        for (const mesh::TetVertices& t : tets) {
+        const auto add = [&](const mesh::TetVertices& t) {
           const double v = std::abs(SignedVolume(t, rest));
           total += v;
           smallest = std::min(smallest, v);
-        }
+        };
+        for (const mesh::TetVertices& t : near) add(t);
+        for (const mesh::TetVertices& t : far) add(t);
+        add(between);
         if (std::abs(total - volume) > 1e-10 * volume || !(smallest > 1e-12 * volume)) continue;
-        if (tets.size() == best_count && !(smallest > best_quality)) continue;
-        best_count = tets.size();
+        if (pieces == best_count && !(smallest > best_quality)) continue;
+        best_count = pieces;
         best_quality = smallest;
-        split.tets = std::move(tets);
+        split.tets = near;
+        split.tets.insert(split.tets.end(), far.begin(), far.end());
+        split.tets.push_back(between);
       }
     }
   }
