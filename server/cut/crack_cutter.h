@@ -1,18 +1,12 @@
 // Cuts a tet mesh along a blade's path with steps that are total: whatever points the blade
 // leaves on a tet's edges and faces, the tet is split (cut/crack_split.h), so nothing the blade
-// did is dropped, held back or frozen.
-//
-// The crack's state is a set of points named by origins (cut/star_parting.h), so the two lips
-// share them: at most one on each edge (the blade edge's first crossing), at most one inside each
-// face (the tip path's first crossing: where the crack ends), and the vertices the crack passes
-// through, snapping decided once per crossing (crack_cutter_snap.cc). What is cut stays cut: a
-// crossing near a crack face made before adds no point (OnTheCrackAlready). The tets that share
-// points form groups. Progressive (the default): after every pose each tet with new points, and
-// each the blade is or was in, is split at once from its own corners, the blade's crossings being
-// temporary points (crack_cutter_blade.cc) and the crack reaching the blade; a group closes once
-// the blade meets none of its tets. Deferred: a group splits once the blade meets none of its
-// tets. After every split the crack's vertices are parted where it separates their tets.
-// docs/cutting-fidelity.md ("The cutter") states each rule, the reason for it and its measures.
+// did is dropped, held back or frozen. The crack is a set of points named by origins
+// (cut/star_parting.h), so the two lips share them: at most one on each edge and one inside each
+// face, and the vertices it passes through (snapped once per crossing); what is cut stays cut.
+// Progressive (the default): after every pose each tet with new points, or that the blade is or
+// was in, splits at once, the blade's crossings temporary points; deferred: a group of tets that
+// share points splits once the blade meets none of them. After every split the crack's vertices
+// are parted. docs/cutting-fidelity.md ("The cutter") states each rule, its reason and measures.
 #pragma once
 
 #include <algorithm>
@@ -375,6 +369,13 @@ class CrackCutter {
   // split still has them); returns the origins whose parting may have changed.
   std::vector<mesh::VertexId> SplitUnit(mesh::TetId unit, const BladeIn* blade,
                                         std::span<const FaceKey> to_open = {});
+  // Replaces the unit's tets by `split`'s pieces, `openings` open in them (and one in a face of
+  // it if `opened_in_face`), unless they are its pieces now; returns as SplitUnit does.
+  std::vector<mesh::VertexId> LayOut(mesh::TetId unit, const TetCrack& crack,
+                                     const std::array<FacePoints, 4>& points,
+                                     const CrackTraces& traces, const CrackSplit& split,
+                                     std::vector<FaceKey> openings, bool opened_in_face,
+                                     bool blade_in);
   // Whether the open unit's pieces stand as they are with the blade in it at `points`: the
   // same points as when they were made (only temporary ones moved), no crack face in a face of it
   // opened, crack faces opened inside only in the cone from the blade's point that a split made

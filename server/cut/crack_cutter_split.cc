@@ -196,11 +196,21 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     if (sides == 2) openings.push_back(key);
     opened_in_face = opened_in_face || sides == 1;
   }
+  return LayOut(unit, crack, points, traces, *split, std::move(openings), opened_in_face,
+                /*blade_in=*/blade != nullptr);
+}
+
+std::vector<VertexId> CrackCutter::LayOut(TetId unit, const TetCrack& crack,
+                                          const std::array<FacePoints, 4>& points,
+                                          const CrackTraces& traces, const CrackSplit& split,
+                                          std::vector<FaceKey> openings, bool opened_in_face,
+                                          bool blade_in) {
+  const bool was_open = open_.contains(unit);
   std::vector<FaceKey> crack_faces;
-  for (const auto& f : split->crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
+  for (const auto& f : split.crack_faces) crack_faces.push_back(MakeFaceKey(f[0], f[1], f[2]));
   std::sort(crack_faces.begin(), crack_faces.end());
   if (was_open && open_.at(unit).crack == crack_faces &&
-      SamePieces(open_.at(unit).pieces, split->tets)) {
+      SamePieces(open_.at(unit).pieces, split.tets)) {
     // Only the temporary points moved (TemporaryVertex moved them): the pieces stand, laid out
     // for the points as they are now.
     OpenTet& open = open_.at(unit);
@@ -219,23 +229,23 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     }
   }
   for (const FaceKey& key : crack_faces) to_part.insert(to_part.end(), key.begin(), key.end());
-  for (const mesh::TetVertices& t : split->tets) {
+  for (const mesh::TetVertices& t : split.tets) {
     for (const VertexId v : t) {
       if (parting_.HasCopies(v)) to_part.push_back(v);
     }
   }
   for (const FaceKey& key : crack_faces) AddCrack(key);
-  if (blade != nullptr) {
+  if (blade_in) {
     ++statistics_.rebuilt;
   } else {
-    ++statistics_.tets_by_case[static_cast<std::size_t>(split->cut_case)];
+    ++statistics_.tets_by_case[static_cast<std::size_t>(split.cut_case)];
   }
   const TetId source = was_open ? open_.at(unit).source : SourceTet(unit);
-  std::vector<TetId> pieces = Replace(unit, split->tets);
+  std::vector<TetId> pieces = Replace(unit, split.tets);
   for (const TetId p : pieces) owner_[p] = unit;
   const double smallest_volume = SmallestRestVolume(*mesh_, pieces);
-  const bool cone = split->kind == CrackSplitKind::kCone;
-  open_[unit] = {.corners = corners,
+  const bool cone = split.kind == CrackSplitKind::kCone;
+  open_[unit] = {.corners = crack.corners,
                  .source = source,
                  .pieces = std::move(pieces),
                  .crack = std::move(crack_faces),
