@@ -434,7 +434,7 @@ class CrackCutter {
   // New points (and temporary ones moved) take their positions, and the state the simulation
   // gives them, from `weights` on `origins` as their own side's tets name them (PlaceOnItsSide;
   // a new point once parting is done). The point at `place`, made or moved; asked again in one
-  // split of units with the same recipe (each unit at its edge or face asks), left as it is.
+  // split of units with the same recipe and no tets changed (each unit at it asks), left as it is.
   mesh::VertexId TemporaryVertex(std::uint64_t place, const std::array<mesh::VertexId, 4>& origins,
                                  const Eigen::Vector4d& weights);
   mesh::VertexId MakeVertex(const std::array<mesh::VertexId, 4>& origins,
@@ -577,7 +577,7 @@ class CrackCutter {
   absl::flat_hash_map<mesh::TetId, mesh::TetId> owner_;  // temporary piece -> its open tet
   // Temporary points by place (a face's key hash, or an open tet's id), and those used this pose.
   absl::flat_hash_map<std::uint64_t, mesh::VertexId> temporary_;
-  absl::flat_hash_set<std::uint64_t> temporary_used_;
+  absl::flat_hash_map<std::uint64_t, std::uint64_t> temporary_used_;  // -> edits_ when placed
   absl::flat_hash_map<mesh::TetId, mesh::TetId> group_of_;
   absl::flat_hash_map<mesh::TetId, std::vector<mesh::TetId>> members_;
   absl::flat_hash_map<mesh::TetId, mesh::TetId> source_tet_;

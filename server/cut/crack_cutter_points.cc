@@ -149,14 +149,17 @@ VertexId CrackCutter::FacePointVertex(const FaceKey& key) {
 
 VertexId CrackCutter::TemporaryVertex(std::uint64_t place, const std::array<VertexId, 4>& origins,
                                       const Eigen::Vector4d& weights) {
-  const bool placed_this_pose = !temporary_used_.insert(place).second;
+  // Placed this pose, and the tets it is placed by the same since.
+  const auto [used, first] = temporary_used_.try_emplace(place, edits_);
+  const bool placed_as_now = !first && used->second == edits_;
+  used->second = edits_;
   const auto it = temporary_.find(place);
   if (it == temporary_.end() || !mesh_->IsAlive(it->second)) {
     return temporary_[place] = MakeVertex(origins, weights);
   }
   PointRecipe& recipe = recipe_[it->second];
   // Each unit at an edge or a face asks for its point: placed once a pose where they agree.
-  if (placed_this_pose && recipe.origins == origins && recipe.weights == weights) {
+  if (placed_as_now && recipe.origins == origins && recipe.weights == weights) {
     return it->second;
   }
   // The scale reads only the origins the weights use.
