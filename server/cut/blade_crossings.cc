@@ -78,10 +78,9 @@ std::vector<TetId> BladeCrossings::NearSweep(const BladePose& from, const BladeP
   // edge at one pose or the other.
   const double move = std::max((to.tip - from.tip).norm(), (to.heel - from.heel).norm());
   const double within = margin + move;
-  const bool still = from.tip == to.tip && from.heel == to.heel;  // the blade where it is
   const auto meets = [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
     return geometry::SegmentMeetsBox(from.tip, from.heel, lo, hi, within) ||
-           (!still && geometry::SegmentMeetsBox(to.tip, to.heel, lo, hi, within));
+           geometry::SegmentMeetsBox(to.tip, to.heel, lo, hi, within);
   };
   const Eigen::Vector3d low =
       from.tip.cwiseMin(from.heel).cwiseMin(to.tip).cwiseMin(to.heel).array() - box_margin;

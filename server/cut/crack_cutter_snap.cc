@@ -193,18 +193,15 @@ void CrackCutter::SnapVerticesNear(const std::vector<TetId>& units, std::vector<
   absl::flat_hash_set<VertexId> seen;
   for (const TetId u : units) {
     const mesh::TetVertices corners = CornersOf(u), placed = PlacedCorners(u);
-    std::optional<double> within;  // the snap share of the unit's mean edge, once asked
+    double edges = 0;
+    for (const auto& [i, j] : mesh::kTetEdges) {
+      edges += (mesh_->current_position(placed[i]) - mesh_->current_position(placed[j])).norm();
+    }
+    const double within = snap_fraction_ * edges / 6;
     for (int k = 0; k < 4; ++k) {
       const VertexId v = corners[k];
       if (on_crack_.contains(v) || IsInnerPoint(v) || !seen.insert(v).second) continue;
-      if (!within) {
-        double edges = 0;
-        for (const auto& [i, j] : mesh::kTetEdges) {
-          edges += (mesh_->current_position(placed[i]) - mesh_->current_position(placed[j])).norm();
-        }
-        within = snap_fraction_ * edges / 6;
-      }
-      if (DistanceToStep(mesh_->current_position(placed[k])) < *within && MaySnap(v)) {
+      if (DistanceToStep(mesh_->current_position(placed[k])) < within && MaySnap(v)) {
         Snap(v, touched);
       }
     }
