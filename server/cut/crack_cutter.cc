@@ -256,7 +256,7 @@ void CrackCutter::Finish() {
         at, PlacedCornersOfAll(UnitsAt(at)), [&](const std::array<VertexId, 3>& f) {
           return face_points_.contains(parting_.OriginKey(f[0], f[1], f[2]));
         });
-    RecordCrossings(ByOrigins(std::move(crossed)), &touched);
+    RecordCrossings(ByOrigins(std::move(crossed)), &touched, FaceCrossingsFrom::kWithdrawal);
   }
   Join(touched);
   if (mode_ == CutMode::kProgressive) {

@@ -266,7 +266,7 @@ void CrackCutter::KeepFarthestFaceCrossings(const absl::flat_hash_map<TetId, Bla
   std::sort(left.faces.begin(), left.faces.end(),
             [](const FaceCrossing& a, const FaceCrossing& b) { return a.face < b.face; });
   std::vector<TetId> around;
-  RecordCrossings(left, &around, /*off_edges=*/true);
+  RecordCrossings(left, &around, FaceCrossingsFrom::kBladeLeft);
   Join(around);
   touched->insert(touched->end(), around.begin(), around.end());
 }

@@ -21,30 +21,22 @@ using mesh::VertexId;
 }  // namespace
 
 void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* touched,
-                                  bool off_edges) {
+                                  FaceCrossingsFrom from) {
   for (const EdgeCrossing& c : found.edges) {
     RecordEdgeCrossing(c.low, c.high, c.fraction, EdgeCrossingFrom::kSweep, touched);
   }
   for (const FaceCrossing& c : found.faces) {
     if (face_points_.contains(c.face)) continue;
     const Eigen::Vector3d& b = c.barycentric;
-    if (OnTheCrackAlready(b[0] * mesh_->rest_position(c.face[0]) +
-                              b[1] * mesh_->rest_position(c.face[1]) +
-                              b[2] * mesh_->rest_position(c.face[2]),
-                          c.face)) {
-      continue;
-    }
+    if (OnTheCrackAlready(RestAt(c.face, b), c.face)) continue;
     int largest = 0, smallest = 0;
     b.maxCoeff(&largest);
     b.minCoeff(&smallest);
     const double share = SnapShare(c.face);
-    const int i = (smallest + 1) % 3, j = (smallest + 2) % 3;
-    // Beside the tissue's surface, off an edge of it (not on it, to rounding), the crossing stays
-    // a point of the face, moved off its edges (face_point_weights.h): taken at the edge, the crack
-    // would end on the surface, and the blade's cut under it would be lost.
-    const bool beside_surface = b[smallest] > kMinSnapFraction && !surface_.HasFace(c.face) &&
-                                surface_.HasEdge(c.face[i], c.face[j]);
-    const bool stays = off_edges || beside_surface;
+    VertexId low = c.face[(smallest + 1) % 3], high = c.face[(smallest + 2) % 3];
+    double fraction = b[(smallest + 2) % 3] / (b[(smallest + 1) % 3] + b[(smallest + 2) % 3]);
+    if (Index(high) < Index(low)) std::swap(low, high), fraction = 1 - fraction;
+    const bool stays = StaysInTheFace(c, share, low, high, from);
     // The corner's, where it may snap: within the share of the corner, or, for a crossing that
     // stays a point of the face, within the share of its two edges (a point beside both fans
     // flat pieces).
@@ -55,9 +47,6 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
     }
     if (b[smallest] < share && !stays) {
       // Beside the edge opposite the smallest weight: that edge's crossing.
-      VertexId low = c.face[i], high = c.face[j];
-      double fraction = b[j] / (b[i] + b[j]);
-      if (Index(high) < Index(low)) std::swap(low, high), fraction = 1 - fraction;
       RecordEdgeCrossing(low, high, fraction, EdgeCrossingFrom::kSweep, touched);
     } else {
       face_points_[c.face] = {FacePointOffEdges(b, share)};
@@ -65,6 +54,39 @@ void CrackCutter::RecordCrossings(const Crossings& found, std::vector<TetId>* to
       touched->insert(touched->end(), units.begin(), units.end());
     }
   }
+}
+
+bool CrackCutter::StaysInTheFace(const FaceCrossing& c, double share, VertexId low, VertexId high,
+                                 FaceCrossingsFrom from) const {
+  if (from == FaceCrossingsFrom::kBladeLeft) return true;
+  const Eigen::Vector3d& b = c.barycentric;
+  // Beside the tissue's surface, off an edge of it (not on it, to rounding), the crossing stays
+  // a point of the face, moved off its edges (face_point_weights.h): taken at the edge, the crack
+  // would end on the surface, and the blade's cut under it would be lost.
+  if (b.minCoeff() > kMinSnapFraction && !surface_.HasFace(c.face) && surface_.HasEdge(low, high)) {
+    return true;
+  }
+  // Where the blade is withdrawn, a crossing beside an edge the crack crossed already stays a
+  // point of the face if that edge's point is the face's only one: taken at the edge, it would be
+  // dropped (the edge keeps its point), and with it the crack the face had up to the blade (one
+  // point traces nothing). Not where moving it off the edges would take it farther than
+  // kWithdrawnPointShift from the blade.
+  if (from != FaceCrossingsFrom::kWithdrawal || !edge_points_.contains(MakeEdgeKey(low, high))) {
+    return false;
+  }
+  int points = 0;
+  for (int k = 0; k < 3; ++k) {
+    points += on_crack_.contains(c.face[k]);
+    points += edge_points_.contains(MakeEdgeKey(c.face[k], c.face[(k + 1) % 3]));
+  }
+  return points == 1 && (RestAt(c.face, FacePointOffEdges(b, share)) - RestAt(c.face, b)).norm() <=
+                            kWithdrawnPointShift * LengthsOf(c.face).tissue_edge();
+}
+
+Eigen::Vector3d CrackCutter::RestAt(const FaceKey& face, const Eigen::Vector3d& barycentric) const {
+  return barycentric[0] * mesh_->rest_position(face[0]) +
+         barycentric[1] * mesh_->rest_position(face[1]) +
+         barycentric[2] * mesh_->rest_position(face[2]);
 }
 
 bool CrackCutter::CrackFaceWithin(

@@ -33,6 +33,12 @@ inline constexpr double kThinCornerDeg = 15;
 // tet's: lab/crack_fidelity.h), so no crack face bends farther than that from the blade's path
 // to reach it.
 inline constexpr double kSnapReach = 0.24;
+// Where the blade is withdrawn, a face's crossing beside an edge the crack crossed elsewhere stays
+// a point of the face if moving it off the face's edges takes it no farther than this share of the
+// tissue's edge there (half the snap reach, leaving the other half to the crack faces between it
+// and the apex: at 0.24, 60 more crack faces of 960 hand cuts lay beyond the fidelity meter's
+// tolerance; docs/cutting-fidelity.md).
+inline constexpr double kWithdrawnPointShift = 0.12;
 // The crack runs along an edge between two vertices snapped onto it where the edge's middle lies
 // within this share of the tissue's edge there of the surface the blade swept between the two
 // snaps (beyond the fidelity meter's tolerance for a crack face's middle, 0.25, so a curved
