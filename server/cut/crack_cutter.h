@@ -226,21 +226,25 @@ class CrackCutter {
   bool CrackFaceWithin(
       const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins, double reach,
       absl::FunctionRef<bool(mesh::TetId, const FaceKey&, const CrackFace&)> counts) const;
-  // Where a face's crossing comes from: the blade's edge swept across the face in a step; the
-  // blade, having lain across it, left it (kept as the farthest crossing: it stays a point of the
-  // face, moved off its edges, FacePointOffEdges, for the blade came near an edge without
-  // crossing it, and taken at the edge the crack would reach every tet around it); or the blade
-  // is withdrawn there (the crack ends at it).
+  // Where a face's crossing comes from: a step's sweep; the blade leaving the face (its farthest
+  // crossing, kept a point of the face: see StaysInTheFace); or the blade withdrawn there.
   enum class FaceCrossingsFrom { kSweep, kBladeLeft, kWithdrawal };
   // Records crossings as points (snapping them); adds the units they touch.
   void RecordCrossings(const Crossings& found, std::vector<mesh::TetId>* touched,
                        FaceCrossingsFrom from = FaceCrossingsFrom::kSweep);
   // Whether a face's crossing near the edge low-high (its smallest weight's opposite) stays a
-  // point of the face rather than being taken as the edge's crossing.
+  // point of the face rather than being taken as the edge's crossing. One the blade left does
+  // (it came near an edge without crossing it: taken at the edge, the crack would reach every tet
+  // around it).
   bool StaysInTheFace(const FaceCrossing& c, double share, mesh::VertexId low, mesh::VertexId high,
                       FaceCrossingsFrom from) const;
   // The rest position of barycentric weights on a face's vertices (key order).
   Eigen::Vector3d RestAt(const FaceKey& face, const Eigen::Vector3d& barycentric) const;
+  // The rest positions of a face's points for good on its corners and edges: its corners on the
+  // crack and its edges' points.
+  std::vector<Eigen::Vector3d> OwnPointsOf(const FaceKey& key) const;
+  // The rest position of the edge a-b's point for good, if it has one.
+  std::optional<Eigen::Vector3d> EdgePointAt(mesh::VertexId a, mesh::VertexId b) const;
   // Where an edge's crossing comes from: the blade's edge swept across the edge in a step, or the
   // blade, having lain across the edge (a temporary point the pieces around stood on), left it.
   enum class EdgeCrossingFrom { kSweep, kBladeLeaving };

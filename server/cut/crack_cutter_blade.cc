@@ -273,25 +273,12 @@ void CrackCutter::KeepFarthestFaceCrossings(const absl::flat_hash_map<TetId, Bla
 
 std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
     const FaceKey& key, const std::vector<Eigen::Vector3d>& crossings) const {
-  const auto rest = [&](VertexId v) -> const Eigen::Vector3d& { return mesh_->rest_position(v); };
   const double reach = kSnapReach * LengthsOf(key).tissue_edge();
-  // Adds the rest position of the edge's point for good, if it has one.
-  const auto add_edge_point = [&](VertexId a, VertexId b, std::vector<Eigen::Vector3d>* on) {
-    if (const auto e = edge_points_.find(MakeEdgeKey(a, b)); e != edge_points_.end()) {
-      const auto [low, high] = EdgeEnds(e->first);
-      on->push_back((1 - e->second.fraction) * rest(low) + e->second.fraction * rest(high));
-    }
-  };
   // The face's own points for good first: a crack the blade left as it went covers its crossings.
-  std::vector<Eigen::Vector3d> own;
-  for (int k = 0; k < 3; ++k) {
-    if (on_crack_.contains(key[k])) own.push_back(rest(key[k]));
-    add_edge_point(key[k], key[(k + 1) % 3], &own);
-  }
+  const std::vector<Eigen::Vector3d> own = OwnPointsOf(key);
   if (own.empty()) return std::nullopt;
   if (std::all_of(crossings.begin(), crossings.end(), [&](const Eigen::Vector3d& b) {
-        return DistanceToSpan(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]),
-                              own) <= reach;
+        return DistanceToSpan(RestAt(key, b), own) <= reach;
       })) {
     return std::nullopt;
   }
@@ -302,14 +289,15 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
     const mesh::TetVertices c = CornersOf(unit);
     std::vector<Eigen::Vector3d> on;
     for (const VertexId v : c) {
-      if (on_crack_.contains(v)) on.push_back(rest(v));
+      if (on_crack_.contains(v)) on.push_back(mesh_->rest_position(v));
     }
-    for (const auto& [i, j] : mesh::kTetEdges) add_edge_point(c[i], c[j], &on);
+    for (const auto& [i, j] : mesh::kTetEdges) {
+      if (const std::optional<Eigen::Vector3d> p = EdgePointAt(c[i], c[j])) on.push_back(*p);
+    }
     for (const auto& f : mesh::kTetFaces) {
       const FaceKey face = MakeFaceKey(c[f[0]], c[f[1]], c[f[2]]);
       if (const auto p = face_points_.find(face); p != face_points_.end()) {
-        const Eigen::Vector3d& b = p->second.barycentric;
-        on.push_back(b[0] * rest(face[0]) + b[1] * rest(face[1]) + b[2] * rest(face[2]));
+        on.push_back(RestAt(face, p->second.barycentric));
       }
     }
     if (!on.empty()) tets.push_back(std::move(on));
@@ -323,8 +311,7 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
   // Farthest first; one a crack face at the face's corners lies beside is cut already.
   std::vector<std::pair<double, int>> beyond;
   for (int i = 0; i < static_cast<int>(crossings.size()); ++i) {
-    const Eigen::Vector3d& b = crossings[i];
-    const double d = distance(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]));
+    const double d = distance(RestAt(key, crossings[i]));
     if (d > reach) beyond.emplace_back(-d, i);
   }
   std::sort(beyond.begin(), beyond.end());
@@ -339,12 +326,30 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
                        (surface_.HasEdge(key[(k + 1) % 3], key[(k + 2) % 3]) && b[k] < kSnapReach);
     }
     if (beside_surface) continue;
-    if (!CrackFaceWithin(b[0] * rest(key[0]) + b[1] * rest(key[1]) + b[2] * rest(key[2]), key,
-                         reach, [](TetId, const FaceKey&, const CrackFace&) { return true; })) {
+    if (!CrackFaceWithin(RestAt(key, b), key, reach,
+                         [](TetId, const FaceKey&, const CrackFace&) { return true; })) {
       return b;
     }
   }
   return std::nullopt;
+}
+
+std::vector<Eigen::Vector3d> CrackCutter::OwnPointsOf(const FaceKey& key) const {
+  std::vector<Eigen::Vector3d> own;
+  for (int k = 0; k < 3; ++k) {
+    const VertexId a = key[k], b = key[(k + 1) % 3];
+    if (on_crack_.contains(a)) own.push_back(mesh_->rest_position(a));
+    if (const std::optional<Eigen::Vector3d> p = EdgePointAt(a, b)) own.push_back(*p);
+  }
+  return own;
+}
+
+std::optional<Eigen::Vector3d> CrackCutter::EdgePointAt(VertexId a, VertexId b) const {
+  const auto e = edge_points_.find(MakeEdgeKey(a, b));
+  if (e == edge_points_.end()) return std::nullopt;
+  const auto [low, high] = EdgeEnds(e->first);
+  return (1 - e->second.fraction) * mesh_->rest_position(low) +
+         e->second.fraction * mesh_->rest_position(high);
 }
 
 }  // namespace kerf::cut

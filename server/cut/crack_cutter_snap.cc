@@ -74,13 +74,9 @@ bool CrackCutter::StaysInTheFace(const FaceCrossing& c, double share, VertexId l
   if (from != FaceCrossingsFrom::kWithdrawal || !edge_points_.contains(MakeEdgeKey(low, high))) {
     return false;
   }
-  int points = 0;
-  for (int k = 0; k < 3; ++k) {
-    points += on_crack_.contains(c.face[k]);
-    points += edge_points_.contains(MakeEdgeKey(c.face[k], c.face[(k + 1) % 3]));
-  }
-  return points == 1 && (RestAt(c.face, FacePointOffEdges(b, share)) - RestAt(c.face, b)).norm() <=
-                            kWithdrawnPointShift * LengthsOf(c.face).tissue_edge();
+  return OwnPointsOf(c.face).size() == 1 &&
+         (RestAt(c.face, FacePointOffEdges(b, share)) - RestAt(c.face, b)).norm() <=
+             kWithdrawnPointShift * LengthsOf(c.face).tissue_edge();
 }
 
 Eigen::Vector3d CrackCutter::RestAt(const FaceKey& face, const Eigen::Vector3d& barycentric) const {
