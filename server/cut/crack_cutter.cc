@@ -188,11 +188,7 @@ absl::Status CrackCutter::ApplyPose(const BladePose& pose) {
   }
   last_pose_ = {};
   ++poses_;
-  swept_.push_back(pose);
-  if (swept_.size() > kJoinSteps + 1) {
-    swept_.pop_front();
-    ++swept_first_;
-  }
+  swept_.Add(pose);
   if (previous_) {
     const BladePose& from = *previous_;
     step_ = {from, pose};

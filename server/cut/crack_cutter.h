@@ -10,7 +10,6 @@
 #pragma once
 
 #include <algorithm>
-#include <deque>
 #include <map>
 #include <optional>
 #include <span>
@@ -27,6 +26,7 @@
 #include "cut/crack_tolerances.h"
 #include "cut/cut_statistics.h"
 #include "cut/star_parting.h"
+#include "cut/swept_path.h"
 #include "cut/tissue_surface.h"
 #include "geometry/segment_triangle_intersection.h"
 #include "mesh/tet_mesh.h"
@@ -476,6 +476,15 @@ class CrackCutter {
   // unit's mean edge of the surface the blade swept since it first met the unit (met_at_); null
   // for a unit the blade never met.
   ApexNearPath NearPath(mesh::TetId unit, const mesh::TetVertices& corners) const;
+  // For good: the apex of a cone that covers the blade's steps inside the unit (StepSamplesIn,
+  // since the blade first met it) better than the split to make (`split`, or if null the cone
+  // from `apex`): where samples lie farther than kStepCoverReach of the tissue's edge from that
+  // split's crack, the farthest pulled inside (PulledInside), if it lies near the path
+  // (NearPath), its cone has no piece under kCoveringConeAngleDeg and leaves fewer samples that
+  // far.
+  std::optional<Eigen::Vector4d> ApexCoveringTheSteps(
+      mesh::TetId unit, const TetCrack& crack, const CrackSplit* split,
+      const std::optional<Eigen::Vector4d>& apex) const;
   // Puts `pieces` (oriented on rest positions) in place of the unit's tets.
   // Keeps cut_tets and new_tets: the tissue's tets standing in two pieces or more, and those.
   void CountPieces(mesh::TetId source, std::size_t removed, std::size_t added);
@@ -549,15 +558,14 @@ class CrackCutter {
   absl::flat_hash_set<mesh::VertexId> on_crack_;                      // origins
   // The pose each vertex snapped at (the crack's other vertices are on it from the start), the
   // edges between snapped vertices the crack runs along, and the poses of the last kJoinSteps
-  // steps (the first of them is pose swept_first_).
+  // steps.
   absl::flat_hash_map<mesh::VertexId, std::size_t> snapped_at_;
   absl::flat_hash_set<EdgeKey> joined_;
   // While the blade is withdrawn, its point (BladeIn::apex) in each unit it is in: a cone split
   // for good there takes it for its apex, as while the blade was in the unit, so the crack ends
   // where the blade did (unless that cone has a piece under kSliverAngleDeg).
   absl::flat_hash_map<mesh::TetId, Eigen::Vector4d> withdrawn_at_;
-  std::deque<BladePose> swept_;
-  std::size_t swept_first_ = 1;
+  SweptPath swept_{kJoinSteps + 1};
   CrackFaces crack_;  // by origins
   // Triangles kept off the crack though the face rule puts them on it (HoldChips), and by the
   // faces of the units they lie in (origins).

@@ -313,19 +313,16 @@ void CrackCutter::Snap(VertexId v, std::vector<TetId>* touched) {
 
 bool CrackCutter::SweptNear(const Eigen::Vector3d& x, std::size_t first, std::size_t last,
                             double reach) const {
-  if (first < swept_first_) return true;  // too long ago to tell
-  for (std::size_t i = first; i < last; ++i) {
-    const BladePose& a = swept_[i - swept_first_];
-    const BladePose& b = swept_[i + 1 - swept_first_];
-    const Eigen::Vector3d low = a.tip.cwiseMin(a.heel).cwiseMin(b.tip).cwiseMin(b.heel);
-    const Eigen::Vector3d high = a.tip.cwiseMax(a.heel).cwiseMax(b.tip).cwiseMax(b.heel);
-    if (((low - x).array() > reach).any() || ((x - high).array() > reach).any()) continue;
-    if (geometry::DistanceToTriangle(x, a.tip, a.heel, b.heel) <= reach ||
-        geometry::DistanceToTriangle(x, a.tip, b.heel, b.tip) <= reach) {
-      return true;
-    }
-  }
-  return false;
+  if (first < swept_.first()) return true;  // too long ago to tell
+  bool near = false;
+  swept_.ForEachStepNear(first, last, x, x, reach, [&](std::size_t i) {
+    const BladePose& a = swept_.at(i);
+    const BladePose& b = swept_.at(i + 1);
+    near = geometry::DistanceToTriangle(x, a.tip, a.heel, b.heel) <= reach ||
+           geometry::DistanceToTriangle(x, a.tip, b.heel, b.tip) <= reach;
+    return !near;
+  });
+  return near;
 }
 
 bool CrackCutter::EdgeOnCrack(VertexId a, VertexId b) const {

@@ -149,10 +149,16 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     split = SplitWithoutApex(crack, rest);
   }
   // For good, a minimal split with slivers gives way to a cone that has fewer.
+  // Either gives way to the cone that covers the blade's steps inside the unit better.
   std::optional<Eigen::Vector4d> cone_apex;
-  if (blade == nullptr && !stood && split) {
-    cone_apex = ConeApexWithFewerSlivers(crack, *split, rest, kSliverAngleDeg,
-                                         NearPath(unit, crack.corners));
+  if (blade == nullptr && !stood) {
+    cone_apex = split ? ConeApexWithFewerSlivers(crack, *split, rest, kSliverAngleDeg,
+                                                 NearPath(unit, crack.corners))
+                      : ApexForGood(unit, crack);
+    if (const auto closer =
+            ApexCoveringTheSteps(unit, crack, cone_apex ? nullptr : &*split, cone_apex)) {
+      cone_apex = closer;
+    }
     if (cone_apex) split.reset();
   }
   const bool was_open = open_.contains(unit);
@@ -165,9 +171,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     return to_part;
   }
   if (!split) {
-    const Eigen::Vector4d apex = blade != nullptr ? blade->apex
-                                 : cone_apex      ? *cone_apex
-                                                  : ApexForGood(unit, crack);
+    const Eigen::Vector4d apex = blade != nullptr ? blade->apex : *cone_apex;
     split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners, apex),
                         /*apex_on_crack=*/blade != nullptr);
   }
@@ -284,29 +288,6 @@ bool CrackCutter::MissesTheBlade(const CrackTraces& traces, const BladeIn& blade
   return std::any_of(traces.holding.begin(), traces.holding.end(), [&](const FaceKey& key) {
     return std::find(blade.crossed.begin(), blade.crossed.end(), key) != blade.crossed.end();
   });
-}
-
-Eigen::Vector4d CrackCutter::ApexForGood(TetId unit, const TetCrack& crack) const {
-  const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
-  if (const auto at = withdrawn_at_.find(unit);
-      at != withdrawn_at_.end() && at->second.minCoeff() > 0 &&
-      SmallestConeAngle(crack, rest, at->second) >= kSliverAngleDeg) {
-    return at->second;  // where the blade is withdrawn: the crack ends there
-  }
-  return ConeApexWeights(crack, rest, NearPath(unit, crack.corners));
-}
-
-ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners) const {
-  const auto met = met_at_.find(unit);
-  if (met == met_at_.end()) return nullptr;
-  const std::size_t first = met->second > 0 ? met->second - 1 : 0;
-  const auto at = [&](int k) { return mesh_->current_position(corners[k]); };
-  const double reach = kApexReach * geometry::MeanEdgeLength(at(0), at(1), at(2), at(3));
-  return [this, corners, first, reach](const Eigen::Vector4d& w) {
-    Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 4; ++k) x += w[k] * mesh_->current_position(corners[k]);
-    return SweptNear(x, first, poses_, reach);
-  };
 }
 
 CrackSplit CrackCutter::PiecesAsSplit(TetId unit) const {

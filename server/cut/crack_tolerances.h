@@ -39,6 +39,15 @@ inline constexpr double kSnapReach = 0.24;
 // and the apex: at 0.24, 60 more crack faces of 960 hand cuts lay beyond the fidelity meter's
 // tolerance; docs/cutting-fidelity.md).
 inline constexpr double kWithdrawnPointShift = 0.12;
+// A split of a tet for good leaving samples of the blade's steps inside the tet farther than
+// this share of the tissue's edge there from its crack gives way to a cone through the farthest
+// (CrackCutter::ApexCoveringTheSteps): under the fidelity meter's tolerance (0.25 of the tet's
+// mean edge, lab/crack_fidelity.h), for the samples lie only in the tet and the meter's anywhere.
+inline constexpr double kStepCoverReach = 0.2;
+// Such a cone's smallest dihedral angle, degrees, at the least: thinner cones through samples
+// (5-10 degrees) let the liver's progressive live cut without snapping, under backward Euler and
+// the corotational law, reach 10 times its first pose's energy (tests/lab/live_cut_test.cc).
+inline constexpr double kCoveringConeAngleDeg = 10;
 // The crack runs along an edge between two vertices snapped onto it where the edge's middle lies
 // within this share of the tissue's edge there of the surface the blade swept between the two
 // snaps (beyond the fidelity meter's tolerance for a crack face's middle, 0.25, so a curved

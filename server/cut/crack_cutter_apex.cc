@@ -1,0 +1,81 @@
+// CrackCutter: where a tet split for good as a cone has its apex (see crack_cutter.h).
+#include <algorithm>
+
+#include "cut/crack_cutter.h"
+#include "cut/steps_in_tet.h"
+#include "geometry/tet_measures.h"
+
+namespace kerf::cut {
+
+using mesh::TetId;
+using mesh::VertexId;
+
+Eigen::Vector4d CrackCutter::ApexForGood(TetId unit, const TetCrack& crack) const {
+  const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
+  if (const auto at = withdrawn_at_.find(unit);
+      at != withdrawn_at_.end() && at->second.minCoeff() > 0 &&
+      SmallestConeAngle(crack, rest, at->second) >= kSliverAngleDeg) {
+    return at->second;  // where the blade is withdrawn: the crack ends there
+  }
+  return ConeApexWeights(crack, rest, NearPath(unit, crack.corners));
+}
+
+ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners) const {
+  const auto met = met_at_.find(unit);
+  if (met == met_at_.end()) return nullptr;
+  const std::size_t first = met->second > 0 ? met->second - 1 : 0;
+  const auto at = [&](int k) { return mesh_->current_position(corners[k]); };
+  const double reach = kApexReach * geometry::MeanEdgeLength(at(0), at(1), at(2), at(3));
+  return [this, corners, first, reach](const Eigen::Vector4d& w) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) x += w[k] * mesh_->current_position(corners[k]);
+    return SweptNear(x, first, poses_, reach);
+  };
+}
+
+std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
+    TetId unit, const TetCrack& crack, const CrackSplit* split,
+    const std::optional<Eigen::Vector4d>& apex) const {
+  const auto met = met_at_.find(unit);
+  if (met == met_at_.end()) return std::nullopt;
+  const std::size_t first = std::max(met->second > 0 ? met->second - 1 : 0, swept_.first());
+  if (first >= poses_) return std::nullopt;
+  const mesh::TetVertices placed = PlacedCorners(unit);
+  std::array<Eigen::Vector3d, 4> now, rest;
+  for (int k = 0; k < 4; ++k) {
+    now[k] = mesh_->current_position(placed[k]);
+    rest[k] = mesh_->rest_position(crack.corners[k]);
+  }
+  const std::vector<Eigen::Vector4d> samples = StepSamplesIn(now, swept_, first, poses_);
+  if (samples.empty()) return std::nullopt;
+  // The crack faces of a split, a cone's apex (kNoVertex) at `at`.
+  const auto faces_of = [&](const CrackSplit& s, const Eigen::Vector4d& at) {
+    const Eigen::Vector3d apex_at =
+        at[0] * rest[0] + at[1] * rest[1] + at[2] * rest[2] + at[3] * rest[3];
+    std::vector<std::array<Eigen::Vector3d, 3>> faces;
+    for (const auto& f : s.crack_faces) {
+      std::array<Eigen::Vector3d, 3> t;
+      for (int k = 0; k < 3; ++k) t[k] = f[k] == kNoVertex ? apex_at : mesh_->rest_position(f[k]);
+      faces.push_back(t);
+    }
+    return faces;
+  };
+  const double reach = kStepCoverReach * LengthsOf(crack.corners).tissue_edge();
+  const SamplesFrom now_from =
+      split != nullptr
+          ? Measure(samples, rest, faces_of(*split, Eigen::Vector4d::Zero()), reach)
+          : Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex), *apex), reach);
+  if (now_from.beyond == 0) return std::nullopt;
+  const auto rest_of = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
+  const Eigen::Vector4d through = PulledInside(now_from.farthest);
+  if (SmallestConeAngle(crack, rest_of, through) < kCoveringConeAngleDeg ||
+      !NearPath(unit, crack.corners)(through)) {
+    return std::nullopt;
+  }
+  const SamplesFrom cone_from =
+      Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex), through), reach);
+  if (cone_from.beyond >= now_from.beyond) return std::nullopt;
+  return through;
+}
+
+}  // namespace kerf::cut

@@ -1,0 +1,62 @@
+#include "cut/steps_in_tet.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <limits>
+
+#include "geometry/point_triangle_distance.h"
+
+namespace kerf::cut {
+
+std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>& corners,
+                                           const SweptPath& path, std::size_t first,
+                                           std::size_t last) {
+  std::vector<Eigen::Vector4d> samples;
+  Eigen::Matrix3d frame;
+  frame << corners[1] - corners[0], corners[2] - corners[0], corners[3] - corners[0];
+  const Eigen::Matrix3d to_weights = frame.inverse();
+  Eigen::Vector3d low = corners[0], high = corners[0];
+  for (const Eigen::Vector3d& c : corners) low = low.cwiseMin(c), high = high.cwiseMax(c);
+  std::vector<std::size_t> steps;  // those whose box meets the tet's
+  path.ForEachStepNear(first, last, low, high, 0, [&](std::size_t i) {
+    steps.push_back(i);
+    return true;
+  });
+  const std::size_t taken = std::min(steps.size(), std::size_t{kSampledSteps});
+  for (std::size_t k = 0; k < taken; ++k) {
+    const std::size_t i = steps[k * steps.size() / taken];
+    const BladePose& a = path.at(i);
+    const BladePose& b = path.at(i + 1);
+    for (const double s : {0.0, 0.5, 1.0}) {
+      const Eigen::Vector3d tip = (1 - s) * a.tip + s * b.tip;
+      const Eigen::Vector3d heel = (1 - s) * a.heel + s * b.heel;
+      for (int j = 0; j < kBladeSamples; ++j) {
+        const Eigen::Vector3d x = tip + (heel - tip) * (j / double(kBladeSamples - 1));
+        if ((x.array() < low.array()).any() || (x.array() > high.array()).any()) continue;
+        const Eigen::Vector3d w = to_weights * (x - corners[0]);
+        const Eigen::Vector4d weights(1 - w.sum(), w.x(), w.y(), w.z());
+        if (weights.minCoeff() >= 0) samples.push_back(weights);
+      }
+    }
+  }
+  return samples;
+}
+
+SamplesFrom Measure(const std::vector<Eigen::Vector4d>& samples,
+                    const std::array<Eigen::Vector3d, 4>& rest,
+                    const std::vector<std::array<Eigen::Vector3d, 3>>& triangles, double reach) {
+  SamplesFrom from;
+  for (const Eigen::Vector4d& w : samples) {
+    const Eigen::Vector3d x = w[0] * rest[0] + w[1] * rest[1] + w[2] * rest[2] + w[3] * rest[3];
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& t : triangles) {
+      nearest = std::min(nearest, geometry::DistanceToTriangle(x, t[0], t[1], t[2]));
+      if (nearest <= reach && nearest <= from.distance) break;  // neither counts nor is farthest
+    }
+    if (nearest > reach) ++from.beyond;
+    if (nearest > from.distance) from.farthest = w, from.distance = nearest;
+  }
+  return from;
+}
+
+}  // namespace kerf::cut

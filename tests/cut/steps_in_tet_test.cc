@@ -1,0 +1,63 @@
+// Samples of the blade's steps inside a tet, and how far a crack leaves them (cut/steps_in_tet.h).
+#include "cut/steps_in_tet.h"
+
+#include <gtest/gtest.h>
+
+namespace kerf::cut {
+namespace {
+
+const std::array<Eigen::Vector3d, 4> kUnitTet = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                                                 Eigen::Vector3d(0, 1, 0),
+                                                 Eigen::Vector3d(0, 0, 1)};
+
+Eigen::Vector3d At(const Eigen::Vector4d& w, const std::array<Eigen::Vector3d, 4>& corners) {
+  return w[0] * corners[0] + w[1] * corners[1] + w[2] * corners[2] + w[3] * corners[3];
+}
+
+// A blade standing through the tet, moved across it: every sample lies inside, on the blade's
+// sweep (the plane y = 0.2, here), and a step beside the tet gives none.
+TEST(StepSamplesIn, SamplesLieInsideTheTetOnTheSweep) {
+  SweptPath path(100);
+  path.Add({0, {-0.5, 0.2, -1}, {-0.5, 0.2, 2}});
+  path.Add({1, {0.5, 0.2, -1}, {0.5, 0.2, 2}});
+  path.Add({2, {3, 0.2, -1}, {3, 0.2, 2}});
+  path.Add({3, {4, 0.2, -1}, {4, 0.2, 2}});  // the step from 3 to 4 misses the tet
+  const std::vector<Eigen::Vector4d> first = StepSamplesIn(kUnitTet, path, 1, 2);
+  ASSERT_GT(first.size(), 3u);
+  for (const Eigen::Vector4d& w : first) {
+    EXPECT_GE(w.minCoeff(), 0);
+    EXPECT_NEAR(w.sum(), 1, 1e-12);
+    EXPECT_NEAR(At(w, kUnitTet).y(), 0.2, 1e-12);
+  }
+  EXPECT_EQ(StepSamplesIn(kUnitTet, path, 3, 4).size(), 0u);
+}
+
+// A blade held in the tet for 1,000 steps: no more than kSampledSteps of them are sampled.
+TEST(StepSamplesIn, ALongStayIsSampledAtKSampledStepsSteps) {
+  SweptPath path(2000);
+  for (int i = 0; i <= 1000; ++i) {
+    const double x = 0.1 + 0.0001 * i;
+    path.Add({0.001 * i, {x, 0.2, -1}, {x, 0.2, 2}});
+  }
+  const std::vector<Eigen::Vector4d> samples = StepSamplesIn(kUnitTet, path, 1, 1001);
+  EXPECT_GT(samples.size(), std::size_t{kSampledSteps});
+  EXPECT_LE(samples.size(), std::size_t{3 * kBladeSamples * kSampledSteps});
+}
+
+// Samples 0.1, 0.3 and 0.5 above the triangle z = 0: with a reach of 0.2 two lie beyond it, the
+// farthest at 0.5; with no triangle every sample lies beyond.
+TEST(StepSamplesIn, MeasureCountsTheSamplesBeyondTheReach) {
+  const std::vector<Eigen::Vector4d> samples = {Eigen::Vector4d(0.7, 0.1, 0.1, 0.1),
+                                                Eigen::Vector4d(0.5, 0.1, 0.1, 0.3),
+                                                Eigen::Vector4d(0.3, 0.1, 0.1, 0.5)};
+  const std::vector<std::array<Eigen::Vector3d, 3>> floor = {
+      {kUnitTet[0], kUnitTet[1], kUnitTet[2]}};
+  const SamplesFrom from = Measure(samples, kUnitTet, floor, 0.2);
+  EXPECT_EQ(from.beyond, 2);
+  EXPECT_NEAR(from.distance, 0.5, 1e-12);
+  EXPECT_EQ(from.farthest, samples[2]);
+  EXPECT_EQ(Measure(samples, kUnitTet, {}, 0.2).beyond, 3);
+}
+
+}  // namespace
+}  // namespace kerf::cut
