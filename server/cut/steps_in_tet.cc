@@ -2,11 +2,35 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <utility>
 
 #include "geometry/point_triangle_distance.h"
 
 namespace kerf::cut {
+
+namespace {
+
+// The samples tip + j along, 0 <= j < kBladeSamples, inside the box from `low` to `high`: those
+// from the first to the second (none where the second is smaller).
+std::pair<int, int> SamplesInBox(const Eigen::Vector3d& tip, const Eigen::Vector3d& along,
+                                 const Eigen::Vector3d& low, const Eigen::Vector3d& high) {
+  double from = 0, to = kBladeSamples - 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (along[axis] == 0) {
+      if (tip[axis] < low[axis] || tip[axis] > high[axis]) return {0, -1};
+      continue;
+    }
+    const double at_low = (low[axis] - tip[axis]) / along[axis];
+    const double at_high = (high[axis] - tip[axis]) / along[axis];
+    from = std::max(from, std::min(at_low, at_high));
+    to = std::min(to, std::max(at_low, at_high));
+  }
+  return {static_cast<int>(std::ceil(from)), static_cast<int>(std::floor(to))};
+}
+
+}  // namespace
 
 std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>& corners,
                                            const SweptPath& path, std::size_t first,
@@ -30,9 +54,10 @@ std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>&
     for (const double s : {0.0, 0.5, 1.0}) {
       const Eigen::Vector3d tip = (1 - s) * a.tip + s * b.tip;
       const Eigen::Vector3d heel = (1 - s) * a.heel + s * b.heel;
-      for (int j = 0; j < kBladeSamples; ++j) {
-        const Eigen::Vector3d x = tip + (heel - tip) * (j / double(kBladeSamples - 1));
-        if ((x.array() < low.array()).any() || (x.array() > high.array()).any()) continue;
+      const Eigen::Vector3d along = (heel - tip) / double(kBladeSamples - 1);
+      const auto [from, to] = SamplesInBox(tip, along, low, high);
+      for (int j = from; j <= to; ++j) {
+        const Eigen::Vector3d x = tip + along * j;
         const Eigen::Vector3d w = to_weights * (x - corners[0]);
         const Eigen::Vector4d weights(1 - w.sum(), w.x(), w.y(), w.z());
         if (weights.minCoeff() >= 0) samples.push_back(weights);
