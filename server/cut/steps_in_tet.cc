@@ -10,10 +10,6 @@
 
 namespace kerf::cut {
 
-namespace {
-
-// The samples tip + j along, 0 <= j < kBladeSamples, inside the box from `low` to `high`: those
-// from the first to the second (none where the second is smaller).
 std::pair<int, int> SamplesInBox(const Eigen::Vector3d& tip, const Eigen::Vector3d& along,
                                  const Eigen::Vector3d& low, const Eigen::Vector3d& high) {
   double from = 0, to = kBladeSamples - 1;
@@ -27,10 +23,9 @@ std::pair<int, int> SamplesInBox(const Eigen::Vector3d& tip, const Eigen::Vector
     from = std::max(from, std::min(at_low, at_high));
     to = std::min(to, std::max(at_low, at_high));
   }
+  if (!(from <= to)) return {0, -1};  // none, or not finite (a blade nearly along an axis)
   return {static_cast<int>(std::ceil(from)), static_cast<int>(std::floor(to))};
 }
-
-}  // namespace
 
 std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>& corners,
                                            const SweptPath& path, std::size_t first,

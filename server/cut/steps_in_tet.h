@@ -27,6 +27,11 @@ std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>&
                                            const SweptPath& path, std::size_t first,
                                            std::size_t last);
 
+// The samples tip + j along (0 <= j < kBladeSamples) inside the box from `low` to `high`: those
+// from the first to the second, within [0, kBladeSamples), or none (the second smaller).
+std::pair<int, int> SamplesInBox(const Eigen::Vector3d& tip, const Eigen::Vector3d& along,
+                                 const Eigen::Vector3d& low, const Eigen::Vector3d& high);
+
 // How far samples lie from a set of triangles: the farthest (its weights and distance, m) and
 // how many lie farther than a reach.
 struct SamplesFrom {

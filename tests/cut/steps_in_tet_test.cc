@@ -59,5 +59,23 @@ TEST(StepSamplesIn, MeasureCountsTheSamplesBeyondTheReach) {
   EXPECT_EQ(Measure(samples, kUnitTet, {}, 0.2).beyond, 3);
 }
 
+// A blade leaning by 4e-17 m along x over its 3 m (a fuzzed pose stream's), beside the tet: the
+// first of its samples in the tet's box would lie 5e15 samples along it, so none is (that count,
+// cast to an int, once started a loop over 2^31 samples); moved into the tet, it is sampled
+// inside only.
+TEST(StepSamplesIn, ABladeAlmostAlongAnAxisBesideTheTetIsSampledOnlyInside) {
+  const Eigen::Vector3d tip(-0.01, 0.2, -1), along = Eigen::Vector3d(4e-17, 0, 3) / 20;
+  const auto [first, last] =
+      SamplesInBox(tip, along, Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
+  EXPECT_GT(first, last);
+  EXPECT_GE(first, 0);
+  SweptPath path(10);
+  path.Add({0, tip, tip + 20 * along});
+  path.Add({1, {0.01, 0.2, -1}, {0.01 + 4e-17, 0.2, 2}});
+  const std::vector<Eigen::Vector4d> samples = StepSamplesIn(kUnitTet, path, 1, 2);
+  EXPECT_FALSE(samples.empty());
+  for (const Eigen::Vector4d& w : samples) EXPECT_GE(At(w, kUnitTet).x(), 0);
+}
+
 }  // namespace
 }  // namespace kerf::cut
