@@ -245,7 +245,7 @@ void CrackCutter::Finish() {
     // The crack reaches where the blade was: its crossings of faces are where the crack ends,
     // and a tet it is in splits for good from its point there (withdrawn_at_).
     const BladePose& at = *previous_;
-    for (const auto& [u, in] : BladeUnitsAt(at)) withdrawn_at_[u] = in.apex;
+    for (const auto& [u, in] : BladeUnitsAt(at)) withdrawn_at_[u] = {in.apex, in.tip_inside};
     step_ = {at, at};  // what snaps now snaps within reach of the blade where it was
     Crossings crossed;
     crossed.faces = crossings_.FacesCrossedBy(

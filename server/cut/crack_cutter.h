@@ -418,23 +418,27 @@ class CrackCutter {
   std::array<mesh::VertexId, 4> NamedIn(std::span<const mesh::TetId> tets,
                                         std::array<mesh::VertexId, 4> origins,
                                         std::array<bool, 4>* found) const;
-  // The apex (barycentric) of a cone the unit splits into for good: the blade's point where it
-  // is withdrawn (withdrawn_at_) if that cone has no piece under kSliverAngleDeg, else
-  // ConeApexWeights.
-  Eigen::Vector4d ApexForGood(mesh::TetId unit, const TetCrack& crack) const;
+  // Where the blade is withdrawn from the unit with its tip inside, or no split without a point
+  // inside fits the unit's points: its point there (withdrawn_at_, barycentric), if inside and
+  // the cone from it has no piece under kSliverAngleDeg. The unit splits for good as that cone,
+  // its crack reaching the point, as while the blade was there.
+  std::optional<Eigen::Vector4d> WithdrawnApex(mesh::TetId unit, const TetCrack& crack,
+                                               bool fits_without) const;
   // Whether a point (barycentric on `corners`, the unit's origins) lies within kApexReach of the
   // unit's mean edge of the surface the blade swept since it first met the unit (met_at_); null
   // for a unit the blade never met.
   ApexNearPath NearPath(mesh::TetId unit, const mesh::TetVertices& corners) const;
   // For good: the apex of a cone that covers the blade's steps inside the unit (StepSamplesIn,
   // since the blade first met it) better than the split to make (`split`, or if null the cone
-  // from `apex`): where samples lie farther than kStepCoverReach of the tissue's edge from that
+  // from `apex`, on its crack if `apex_on_crack`): where samples lie farther than
+  // kStepCoverReach of the tissue's edge from that
   // split's crack, the farthest pulled inside (PulledInside), if it lies near the path
   // (NearPath), its cone has no piece under kCoveringConeAngleDeg and leaves fewer samples that
   // far.
-  std::optional<Eigen::Vector4d> ApexCoveringTheSteps(
-      mesh::TetId unit, const TetCrack& crack, const CrackSplit* split,
-      const std::optional<Eigen::Vector4d>& apex) const;
+  std::optional<Eigen::Vector4d> ApexCoveringTheSteps(mesh::TetId unit, const TetCrack& crack,
+                                                      const CrackSplit* split,
+                                                      const std::optional<Eigen::Vector4d>& apex,
+                                                      bool apex_on_crack) const;
   // Puts `pieces` (oriented on rest positions) in place of the unit's tets.
   // Keeps cut_tets and new_tets: the tissue's tets standing in two pieces or more, and those.
   void CountPieces(mesh::TetId source, std::size_t removed, std::size_t added);
@@ -511,10 +515,14 @@ class CrackCutter {
   // steps.
   absl::flat_hash_map<mesh::VertexId, std::size_t> snapped_at_;
   absl::flat_hash_set<EdgeKey> joined_;
-  // While the blade is withdrawn, its point (BladeIn::apex) in each unit it is in: a cone split
-  // for good there takes it for its apex, as while the blade was in the unit, so the crack ends
-  // where the blade did (unless that cone has a piece under kSliverAngleDeg).
-  absl::flat_hash_map<mesh::TetId, Eigen::Vector4d> withdrawn_at_;
+  // While the blade is withdrawn, its point (BladeIn::apex) in each unit it is in and whether
+  // that is its tip: a cone split for good there takes it for its apex (WithdrawnApex), so the
+  // crack ends where the blade did.
+  struct Withdrawn {
+    Eigen::Vector4d apex;
+    bool tip_inside = false;
+  };
+  absl::flat_hash_map<mesh::TetId, Withdrawn> withdrawn_at_;
   SweptPath swept_{kJoinSteps + 1};
   CrackFaces crack_;  // by origins
   // Triangles kept off the crack though the face rule puts them on it (HoldChips), and by the

@@ -10,14 +10,16 @@ namespace kerf::cut {
 using mesh::TetId;
 using mesh::VertexId;
 
-Eigen::Vector4d CrackCutter::ApexForGood(TetId unit, const TetCrack& crack) const {
-  const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
-  if (const auto at = withdrawn_at_.find(unit);
-      at != withdrawn_at_.end() && at->second.minCoeff() > 0 &&
-      SmallestConeAngle(crack, rest, at->second) >= kSliverAngleDeg) {
-    return at->second;  // where the blade is withdrawn: the crack ends there
+std::optional<Eigen::Vector4d> CrackCutter::WithdrawnApex(TetId unit, const TetCrack& crack,
+                                                          bool fits_without) const {
+  const auto at = withdrawn_at_.find(unit);
+  if (at == withdrawn_at_.end() || at->second.apex.minCoeff() <= 0 ||
+      (fits_without && !at->second.tip_inside)) {
+    return std::nullopt;
   }
-  return ConeApexWeights(crack, rest, NearPath(unit, crack.corners));
+  const auto rest = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
+  if (SmallestConeAngle(crack, rest, at->second.apex) < kSliverAngleDeg) return std::nullopt;
+  return at->second.apex;
 }
 
 ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners) const {
@@ -35,7 +37,7 @@ ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners)
 
 std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
     TetId unit, const TetCrack& crack, const CrackSplit* split,
-    const std::optional<Eigen::Vector4d>& apex) const {
+    const std::optional<Eigen::Vector4d>& apex, bool apex_on_crack) const {
   const auto met = met_at_.find(unit);
   if (met == met_at_.end()) return std::nullopt;
   const std::size_t first = std::max(met->second > 0 ? met->second - 1 : 0, swept_.first());
@@ -64,7 +66,8 @@ std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
   const SamplesFrom now_from =
       split != nullptr
           ? Measure(samples, rest, faces_of(*split, Eigen::Vector4d::Zero()), reach)
-          : Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex), *apex), reach);
+          : Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex, apex_on_crack), *apex),
+                    reach);
   if (now_from.beyond == 0) return std::nullopt;
   const auto rest_of = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
   const Eigen::Vector4d through = PulledInside(now_from.farthest);

@@ -148,16 +148,23 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   } else if (blade == nullptr || !SplitsAsTheBladesCone(points, traces, *blade)) {
     split = SplitWithoutApex(crack, rest);
   }
-  // For good, a minimal split with slivers gives way to a cone that has fewer.
+  // For good, a minimal split with slivers gives way to a cone that has fewer; a unit the blade
+  // is withdrawn from splits as the cone from where it was, the crack reaching that point.
   // Either gives way to the cone that covers the blade's steps inside the unit better.
   std::optional<Eigen::Vector4d> cone_apex;
+  bool apex_on_crack = blade != nullptr;
   if (blade == nullptr && !stood) {
-    cone_apex = split ? ConeApexWithFewerSlivers(crack, *split, rest, kSliverAngleDeg,
-                                                 NearPath(unit, crack.corners))
-                      : ApexForGood(unit, crack);
-    if (const auto closer =
-            ApexCoveringTheSteps(unit, crack, cone_apex ? nullptr : &*split, cone_apex)) {
-      cone_apex = closer;
+    if (const auto withdrawn = WithdrawnApex(unit, crack, /*fits_without=*/split.has_value())) {
+      cone_apex = withdrawn, apex_on_crack = true;
+    } else if (split) {
+      cone_apex = ConeApexWithFewerSlivers(crack, *split, rest, kSliverAngleDeg,
+                                           NearPath(unit, crack.corners));
+    } else {
+      cone_apex = ConeApexWeights(crack, rest, NearPath(unit, crack.corners));
+    }
+    if (const auto closer = ApexCoveringTheSteps(unit, crack, cone_apex ? nullptr : &*split,
+                                                 cone_apex, apex_on_crack)) {
+      cone_apex = closer, apex_on_crack = false;
     }
     if (cone_apex) split.reset();
   }
@@ -172,8 +179,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   }
   if (!split) {
     const Eigen::Vector4d apex = blade != nullptr ? blade->apex : *cone_apex;
-    split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners, apex),
-                        /*apex_on_crack=*/blade != nullptr);
+    split = SplitAsCone(crack, TemporaryVertex(ApexPlace(unit), corners, apex), apex_on_crack);
   }
   // For good, no piece is cut free but by the blade; while the blade is in the tet, pieces
   // between its points and the crack stay open until it moves on.
