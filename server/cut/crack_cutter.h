@@ -424,6 +424,9 @@ class CrackCutter {
   // its crack reaching the point, as while the blade was there.
   std::optional<Eigen::Vector4d> WithdrawnApex(mesh::TetId unit, const TetCrack& crack,
                                                bool fits_without) const;
+  // The pose the step in which the blade first met the unit starts at (met_at_); none for a unit
+  // the blade never met.
+  std::optional<std::size_t> FirstPoseIn(mesh::TetId unit) const;
   // Whether a point (barycentric on `corners`, the unit's origins) lies within kApexReach of the
   // unit's mean edge of the surface the blade swept since it first met the unit (met_at_); null
   // for a unit the blade never met.

@@ -22,10 +22,16 @@ std::optional<Eigen::Vector4d> CrackCutter::WithdrawnApex(TetId unit, const TetC
   return at->second.apex;
 }
 
-ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners) const {
+std::optional<std::size_t> CrackCutter::FirstPoseIn(TetId unit) const {
   const auto met = met_at_.find(unit);
-  if (met == met_at_.end()) return nullptr;
-  const std::size_t first = met->second > 0 ? met->second - 1 : 0;
+  if (met == met_at_.end()) return std::nullopt;
+  return met->second > 0 ? met->second - 1 : 0;
+}
+
+ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners) const {
+  const std::optional<std::size_t> met = FirstPoseIn(unit);
+  if (!met) return nullptr;
+  const std::size_t first = *met;
   const auto at = [&](int k) { return mesh_->current_position(corners[k]); };
   const double reach = kApexReach * geometry::MeanEdgeLength(at(0), at(1), at(2), at(3));
   return [this, corners, first, reach](const Eigen::Vector4d& w) {
@@ -38,9 +44,9 @@ ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners)
 std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
     TetId unit, const TetCrack& crack, const CrackSplit* split,
     const std::optional<Eigen::Vector4d>& apex, bool apex_on_crack) const {
-  const auto met = met_at_.find(unit);
-  if (met == met_at_.end()) return std::nullopt;
-  const std::size_t first = std::max(met->second > 0 ? met->second - 1 : 0, swept_.first());
+  const std::optional<std::size_t> met = FirstPoseIn(unit);
+  if (!met) return std::nullopt;
+  const std::size_t first = std::max(*met, swept_.first());
   if (first >= poses_) return std::nullopt;
   const mesh::TetVertices placed = PlacedCorners(unit);
   std::array<Eigen::Vector3d, 4> now, rest;
@@ -52,8 +58,7 @@ std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
   if (samples.empty()) return std::nullopt;
   // The crack faces of a split, a cone's apex (kNoVertex) at `at`.
   const auto faces_of = [&](const CrackSplit& s, const Eigen::Vector4d& at) {
-    const Eigen::Vector3d apex_at =
-        at[0] * rest[0] + at[1] * rest[1] + at[2] * rest[2] + at[3] * rest[3];
+    const Eigen::Vector3d apex_at = PointAtWeights(rest, at);
     std::vector<std::array<Eigen::Vector3d, 3>> faces;
     for (const auto& f : s.crack_faces) {
       std::array<Eigen::Vector3d, 3> t;

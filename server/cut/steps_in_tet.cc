@@ -67,7 +67,7 @@ SamplesFrom Measure(const std::vector<Eigen::Vector4d>& samples,
                     const std::vector<std::array<Eigen::Vector3d, 3>>& triangles, double reach) {
   SamplesFrom from;
   for (const Eigen::Vector4d& w : samples) {
-    const Eigen::Vector3d x = w[0] * rest[0] + w[1] * rest[1] + w[2] * rest[2] + w[3] * rest[3];
+    const Eigen::Vector3d x = PointAtWeights(rest, w);
     double nearest = std::numeric_limits<double>::infinity();
     for (const auto& t : triangles) {
       nearest = std::min(nearest, geometry::DistanceToTriangle(x, t[0], t[1], t[2]));

@@ -12,6 +12,13 @@
 
 namespace kerf::cut {
 
+// The point at barycentric `weights` on `corners`.
+inline Eigen::Vector3d PointAtWeights(const std::array<Eigen::Vector3d, 4>& corners,
+                                      const Eigen::Vector4d& weights) {
+  return weights[0] * corners[0] + weights[1] * corners[1] + weights[2] * corners[2] +
+         weights[3] * corners[3];
+}
+
 // Points along the blade (tip to heel) per pose sampled, and poses sampled per step (its two
 // ends and its middle).
 inline constexpr int kBladeSamples = 21;

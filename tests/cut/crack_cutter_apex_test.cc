@@ -19,6 +19,25 @@ namespace {
 
 using mesh::TetMesh;
 
+// Cuts `tissue` along a hand path in `mode` and withdraws the blade: the mesh valid, `f` the
+// crack's fidelity to the path.
+void CutAlongHandPath(const TetMesh& tissue, const std::vector<BladePose>& poses, CutMode mode,
+                      lab::Fidelity* f) {
+  const double diagonal = mesh::MeasureBounds(tissue).diagonal();
+  TetMesh m = tissue;
+  CrackCutter cutter = *CrackCutter::Create(
+      &m, mesh::MeanEdgeLength(m),
+      {.max_length = 2 * diagonal, .max_step = 0.25 * diagonal, .max_speed = 1e9}, {.mode = mode});
+  lab::FidelityMeter meter(tissue);
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    ASSERT_TRUE(cutter.ApplyPose(poses[i]).ok()) << "pose " << i;
+    if (i > 0) meter.AddStep(poses[i - 1], poses[i]);
+  }
+  cutter.Finish();
+  ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  *f = meter.Measure(meter.FindCrack(m));
+}
+
 // The lattice's hand paths whose cones for good had their apexes away from where the blade went
 // (seeds 12, 28 and 34 of the forty measured in docs/cutting-fidelity.md: 6, 6 and 10 crack
 // faces overcut, up to 0.32 l): near a corner, the apex was pulled off the crack's plane to keep
@@ -28,26 +47,14 @@ using mesh::TetMesh;
 TEST(CrackCutterApex, ConesOfHandPathsKeepTheirApexesWhereTheBladeWent) {
   const TetMesh lattice = *mesh::MakeBoxLattice(
       {.cells_x = 4, .cells_y = 6, .cells_z = 4, .size = Eigen::Vector3d(0.04, 0.06, 0.04)});
-  const double diagonal = mesh::MeasureBounds(lattice).diagonal();
   for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
     for (const std::uint64_t seed : {12, 28, 34}) {
       SCOPED_TRACE(::testing::Message()
                    << (mode == CutMode::kProgressive ? "progressive" : "deferred") << ", seed "
                    << seed);
-      TetMesh m = lattice;
-      CrackCutter cutter = *CrackCutter::Create(
-          &m, mesh::MeanEdgeLength(m),
-          {.max_length = 2 * diagonal, .max_step = 0.25 * diagonal, .max_speed = 1e9},
-          {.mode = mode});
-      lab::FidelityMeter meter(lattice);
-      const std::vector<BladePose> poses = lab::MakeHandPath(lattice, lab::PathFamily::kHand, seed);
-      for (std::size_t i = 0; i < poses.size(); ++i) {
-        ASSERT_TRUE(cutter.ApplyPose(poses[i]).ok()) << "pose " << i;
-        if (i > 0) meter.AddStep(poses[i - 1], poses[i]);
-      }
-      cutter.Finish();
-      ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-      const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+      lab::Fidelity f;
+      ASSERT_NO_FATAL_FAILURE(CutAlongHandPath(
+          lattice, lab::MakeHandPath(lattice, lab::PathFamily::kHand, seed), mode, &f));
       EXPECT_GT(f.crack_faces, 100u);
       EXPECT_EQ(f.overcut_faces, 0u);
       EXPECT_LE(f.max_overcut, 0.25);
@@ -108,25 +115,13 @@ TEST(CrackCutterApex, HandPathsTurningInsideTetsAreCoveredBelowTheSurface) {
       if (path.empty()) continue;  // no ../shared/meshes
       tissue = *mesh::ReadMeshFile(path);
     }
-    const double diagonal = mesh::MeasureBounds(tissue).diagonal();
     const std::vector<BladePose> poses = lab::MakeHandPath(tissue, lab::PathFamily::kHand, c.seed);
     for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
       SCOPED_TRACE(::testing::Message()
                    << (c.mesh ? c.mesh : "lattice") << " hand seed " << c.seed << ", "
                    << (mode == CutMode::kProgressive ? "progressive" : "deferred"));
-      TetMesh m = tissue;
-      CrackCutter cutter = *CrackCutter::Create(
-          &m, mesh::MeanEdgeLength(m),
-          {.max_length = 2 * diagonal, .max_step = 0.25 * diagonal, .max_speed = 1e9},
-          {.mode = mode});
-      lab::FidelityMeter meter(tissue);
-      for (std::size_t i = 0; i < poses.size(); ++i) {
-        ASSERT_TRUE(cutter.ApplyPose(poses[i]).ok()) << "pose " << i;
-        if (i > 0) meter.AddStep(poses[i - 1], poses[i]);
-      }
-      cutter.Finish();
-      ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-      const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+      lab::Fidelity f;
+      ASSERT_NO_FATAL_FAILURE(CutAlongHandPath(tissue, poses, mode, &f));
       EXPECT_GE(f.coverage_below_surface,
                 mode == CutMode::kProgressive ? c.least_progressive : c.least_deferred);
       EXPECT_EQ(f.overcut_faces, 0u);

@@ -10,10 +10,6 @@ const std::array<Eigen::Vector3d, 4> kUnitTet = {Eigen::Vector3d(0, 0, 0), Eigen
                                                  Eigen::Vector3d(0, 1, 0),
                                                  Eigen::Vector3d(0, 0, 1)};
 
-Eigen::Vector3d At(const Eigen::Vector4d& w, const std::array<Eigen::Vector3d, 4>& corners) {
-  return w[0] * corners[0] + w[1] * corners[1] + w[2] * corners[2] + w[3] * corners[3];
-}
-
 // A blade standing through the tet, moved across it: every sample lies inside, on the blade's
 // sweep (the plane y = 0.2, here), and a step beside the tet gives none.
 TEST(StepSamplesIn, SamplesLieInsideTheTetOnTheSweep) {
@@ -27,7 +23,7 @@ TEST(StepSamplesIn, SamplesLieInsideTheTetOnTheSweep) {
   for (const Eigen::Vector4d& w : first) {
     EXPECT_GE(w.minCoeff(), 0);
     EXPECT_NEAR(w.sum(), 1, 1e-12);
-    EXPECT_NEAR(At(w, kUnitTet).y(), 0.2, 1e-12);
+    EXPECT_NEAR(PointAtWeights(kUnitTet, w).y(), 0.2, 1e-12);
   }
   EXPECT_EQ(StepSamplesIn(kUnitTet, path, 3, 4).size(), 0u);
 }
@@ -74,7 +70,7 @@ TEST(StepSamplesIn, ABladeAlmostAlongAnAxisBesideTheTetIsSampledOnlyInside) {
   path.Add({1, {0.01, 0.2, -1}, {0.01 + 4e-17, 0.2, 2}});
   const std::vector<Eigen::Vector4d> samples = StepSamplesIn(kUnitTet, path, 1, 2);
   EXPECT_FALSE(samples.empty());
-  for (const Eigen::Vector4d& w : samples) EXPECT_GE(At(w, kUnitTet).x(), 0);
+  for (const Eigen::Vector4d& w : samples) EXPECT_GE(PointAtWeights(kUnitTet, w).x(), 0);
 }
 
 }  // namespace
