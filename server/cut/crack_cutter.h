@@ -434,14 +434,22 @@ class CrackCutter {
   // For good: the apex of a cone that covers the blade's steps inside the unit (StepSamplesIn,
   // since the blade first met it) better than the split to make (`split`, or if null the cone
   // from `apex`, on its crack if `apex_on_crack`): where samples lie farther than
-  // kStepCoverReach of the tissue's edge from that
-  // split's crack, the farthest pulled inside (PulledInside), if it lies near the path
-  // (NearPath), its cone has no piece under kCoveringConeAngleDeg and leaves fewer samples that
-  // far.
-  std::optional<Eigen::Vector4d> ApexCoveringTheSteps(mesh::TetId unit, const TetCrack& crack,
-                                                      const CrackSplit* split,
-                                                      const std::optional<Eigen::Vector4d>& apex,
-                                                      bool apex_on_crack) const;
+  // kStepCoverReach of the tissue's edge from that split's crack, the farthest pulled inside
+  // (PulledInside), if it lies near the path (NearPath), its cone has no piece under
+  // kCoveringConeAngleDeg and leaves fewer samples that far. Where the split's crack has no face,
+  // its traces lie in the tissue's surface (TraceInTheTissueSurface) and the blade's tip went
+  // through the unit, the blade grazed the surface and cut under it: the apex is on the cone's
+  // crack, which runs from the traces to it.
+  struct CoveringApex {
+    Eigen::Vector4d weights;
+    bool on_crack = false;
+  };
+  // Whether a face of the tissue's boundary holds all the crack's traces.
+  bool TraceInTheTissueSurface(const TetCrack& crack) const;
+  std::optional<CoveringApex> ApexCoveringTheSteps(mesh::TetId unit, const TetCrack& crack,
+                                                   const CrackSplit* split,
+                                                   const std::optional<Eigen::Vector4d>& apex,
+                                                   bool apex_on_crack) const;
   // Puts `pieces` (oriented on rest positions) in place of the unit's tets.
   // Keeps cut_tets and new_tets: the tissue's tets standing in two pieces or more, and those.
   void CountPieces(mesh::TetId source, std::size_t removed, std::size_t added);

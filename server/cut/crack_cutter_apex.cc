@@ -41,7 +41,16 @@ ApexNearPath CrackCutter::NearPath(TetId unit, const mesh::TetVertices& corners)
   };
 }
 
-std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
+bool CrackCutter::TraceInTheTissueSurface(const TetCrack& crack) const {
+  const std::vector<int> holding = FacesHoldingTheTrace(crack);
+  return std::any_of(holding.begin(), holding.end(), [&](int k) {
+    const auto& f = mesh::kTetFaces[k];
+    return surface_.HasFace(
+        MakeFaceKey(crack.corners[f[0]], crack.corners[f[1]], crack.corners[f[2]]));
+  });
+}
+
+std::optional<CrackCutter::CoveringApex> CrackCutter::ApexCoveringTheSteps(
     TetId unit, const TetCrack& crack, const CrackSplit* split,
     const std::optional<Eigen::Vector4d>& apex, bool apex_on_crack) const {
   const std::optional<std::size_t> met = FirstPoseIn(unit);
@@ -54,7 +63,9 @@ std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
     now[k] = mesh_->current_position(placed[k]);
     rest[k] = mesh_->rest_position(crack.corners[k]);
   }
-  const std::vector<Eigen::Vector4d> samples = StepSamplesIn(now, swept_, first, poses_);
+  bool tip_inside = false;
+  const std::vector<Eigen::Vector4d> samples =
+      StepSamplesIn(now, swept_, first, poses_, &tip_inside);
   if (samples.empty()) return std::nullopt;
   // The crack faces of a split, a cone's apex (kNoVertex) at `at`.
   const auto faces_of = [&](const CrackSplit& s, const Eigen::Vector4d& at) {
@@ -68,11 +79,13 @@ std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
     return faces;
   };
   const double reach = kStepCoverReach * LengthsOf(crack.corners).tissue_edge();
-  const SamplesFrom now_from =
-      split != nullptr
-          ? Measure(samples, rest, faces_of(*split, Eigen::Vector4d::Zero()), reach)
-          : Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex, apex_on_crack), *apex),
-                    reach);
+  const std::vector<std::array<Eigen::Vector3d, 3>> now_faces =
+      split != nullptr ? faces_of(*split, Eigen::Vector4d::Zero())
+                       : faces_of(SplitAsCone(crack, kNoVertex, apex_on_crack), *apex);
+  // Where the split cuts nothing but in the tissue's surface and the tip went through the unit,
+  // the blade grazed the surface: the cone's crack runs from the traces there to the apex.
+  const bool on_crack = now_faces.empty() && tip_inside && TraceInTheTissueSurface(crack);
+  const SamplesFrom now_from = Measure(samples, rest, now_faces, reach);
   if (now_from.beyond == 0) return std::nullopt;
   const auto rest_of = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
   const Eigen::Vector4d through = PulledInside(now_from.farthest);
@@ -81,9 +94,9 @@ std::optional<Eigen::Vector4d> CrackCutter::ApexCoveringTheSteps(
     return std::nullopt;
   }
   const SamplesFrom cone_from =
-      Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex), through), reach);
+      Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex, on_crack), through), reach);
   if (cone_from.beyond >= now_from.beyond) return std::nullopt;
-  return through;
+  return CoveringApex{through, on_crack};
 }
 
 }  // namespace kerf::cut

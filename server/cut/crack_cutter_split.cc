@@ -164,7 +164,7 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
     }
     if (const auto closer = ApexCoveringTheSteps(unit, crack, cone_apex ? nullptr : &*split,
                                                  cone_apex, apex_on_crack)) {
-      cone_apex = closer, apex_on_crack = false;
+      cone_apex = closer->weights, apex_on_crack = closer->on_crack;
     }
     if (cone_apex) split.reset();
   }

@@ -29,7 +29,7 @@ std::pair<int, int> SamplesInBox(const Eigen::Vector3d& tip, const Eigen::Vector
 
 std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>& corners,
                                            const SweptPath& path, std::size_t first,
-                                           std::size_t last) {
+                                           std::size_t last, bool* tip_inside) {
   std::vector<Eigen::Vector4d> samples;
   Eigen::Matrix3d frame;
   frame << corners[1] - corners[0], corners[2] - corners[0], corners[3] - corners[0];
@@ -55,7 +55,9 @@ std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>&
         const Eigen::Vector3d x = tip + along * j;
         const Eigen::Vector3d w = to_weights * (x - corners[0]);
         const Eigen::Vector4d weights(1 - w.sum(), w.x(), w.y(), w.z());
-        if (weights.minCoeff() >= 0) samples.push_back(weights);
+        if (weights.minCoeff() < 0) continue;
+        samples.push_back(weights);
+        if (j == 0 && tip_inside != nullptr) *tip_inside = true;
       }
     }
   }

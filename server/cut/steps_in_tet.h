@@ -29,10 +29,11 @@ inline constexpr int kSampledSteps = 64;
 // The samples of the steps of `path` from pose `first` to pose `last` (each pair of consecutive
 // poses) that lie inside the tet with corners `corners` (the positions the poses were taken in, not
 // flat), as weights on those corners. A step whose box misses the tet's is passed over; of more
-// than kSampledSteps that meet it, that many spread evenly are sampled.
+// than kSampledSteps that meet it, that many spread evenly are sampled. `tip_inside`, if given, is
+// set to whether a sample at the blade's tip lies inside.
 std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>& corners,
                                            const SweptPath& path, std::size_t first,
-                                           std::size_t last);
+                                           std::size_t last, bool* tip_inside = nullptr);
 
 // The samples tip + j along (0 <= j < kBladeSamples) inside the box from `low` to `high`: those
 // from the first to the second, within [0, kBladeSamples), or none (the second smaller).

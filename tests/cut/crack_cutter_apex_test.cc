@@ -93,6 +93,62 @@ TEST(CrackCutterApex, ASplitForGoodReachesWhereTheBladeTurnedInsideTheTet) {
   }
 }
 
+// A blade standing under the unit tet's face z = 0 (along +z, from z = -1 to 0.1) sweeps across
+// it at y = 0.25, in through the edge x = 0 and out through the edge x + y = 1, its tip 0.1
+// inside: its only points are those two edges' (its tip's crossings of the faces x = 0 and
+// x + y + z = 1 lie within the snap reach of the crack), so the tet's crack lies in the face z = 0,
+// the tissue's own, and cuts nothing. The blade grazed the surface: the tet splits as the cone from
+// the two points to where the tip went, and its crack covers the sweep under the face.
+TEST(CrackCutterApex, ABladeGrazingASurfaceFaceCutsUnderIt) {
+  const TetMesh tet = kerf::testing::UnitTet();
+  for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+    SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
+    TetMesh m = tet;
+    CrackCutter cutter = *CrackCutter::Create(
+        &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100}, {.mode = mode});
+    lab::FidelityMeter meter(tet);
+    std::vector<BladePose> poses;
+    for (int i = 0; i <= 60; ++i) {
+      const double x = -0.3 + 1.5 * i / 60.0;
+      poses.push_back({0.001 * i, {x, 0.25, 0.1}, {x, 0.25, -1}});
+      ASSERT_TRUE(cutter.ApplyPose(poses.back()).ok()) << "pose " << i;
+      if (i > 0) meter.AddStep(poses[i - 1], poses[i]);
+    }
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+    EXPECT_GT(f.samples, 0u);
+    EXPECT_GE(f.coverage, 0.99);
+    EXPECT_EQ(f.overcut_faces, 0u);
+    EXPECT_EQ(f.unpaired_faces, 0u);
+    EXPECT_GE(mesh::MeasureMeshQuality(m).min_dihedral_deg, 5);
+  }
+}
+
+// Paths through `liver2.msh`'s vertices whose tips run just under its surface (seeds 24 and 29 of
+// the forty in docs/cutting-fidelity.md): the crack of tets the tip went through lay in the
+// liver's own faces, cutting nothing there, and 0.860 and 0.844 of the sweep was covered. Those
+// tets now split as cones from the surface to where the tip went.
+TEST(CrackCutterApex, TipsJustUnderTheLiversSurfaceCutUnderIt) {
+  const std::string path = kerf::testing::SharedMeshPath("liver2.msh");
+  if (path.empty()) GTEST_SKIP() << "no ../shared/meshes";
+  const TetMesh liver = *mesh::ReadMeshFile(path);
+  for (const std::uint64_t seed : {24, 29}) {
+    const std::vector<BladePose> poses =
+        lab::MakeHandPath(liver, lab::PathFamily::kThroughVertices, seed);
+    for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+      SCOPED_TRACE(::testing::Message()
+                   << "seed " << seed << ", "
+                   << (mode == CutMode::kProgressive ? "progressive" : "deferred"));
+      lab::Fidelity f;
+      ASSERT_NO_FATAL_FAILURE(CutAlongHandPath(liver, poses, mode, &f));
+      EXPECT_GE(f.coverage, 0.98);
+      EXPECT_EQ(f.overcut_faces, 0u);
+      EXPECT_EQ(f.unpaired_faces, 0u);
+    }
+  }
+}
+
 // Hand paths whose blade turned inside tets where the crack had its points already (its
 // re-crossings of cut edges add none): `liver.msh`'s hand seed 2 and the lattice's seed 8 left
 // 0.988 and 0.987 of the swept surface below the tissue's surface covered progressively, 0.953
