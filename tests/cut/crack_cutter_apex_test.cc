@@ -19,10 +19,10 @@ namespace {
 
 using mesh::TetMesh;
 
-// Cuts `tissue` along a hand path in `mode` and withdraws the blade: the mesh valid, `f` the
-// crack's fidelity to the path.
-void CutAlongHandPath(const TetMesh& tissue, const std::vector<BladePose>& poses, CutMode mode,
-                      lab::Fidelity* f) {
+// Cuts `tissue` along a path in `mode` and withdraws the blade: the mesh valid, `f` the crack's
+// fidelity to the path.
+void CutAlongPath(const TetMesh& tissue, const std::vector<BladePose>& poses, CutMode mode,
+                  lab::Fidelity* f, TetMesh* cut = nullptr) {
   const double diagonal = mesh::MeasureBounds(tissue).diagonal();
   TetMesh m = tissue;
   CrackCutter cutter = *CrackCutter::Create(
@@ -36,6 +36,7 @@ void CutAlongHandPath(const TetMesh& tissue, const std::vector<BladePose>& poses
   cutter.Finish();
   ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
   *f = meter.Measure(meter.FindCrack(m));
+  if (cut != nullptr) *cut = std::move(m);
 }
 
 // The lattice's hand paths whose cones for good had their apexes away from where the blade went
@@ -53,7 +54,7 @@ TEST(CrackCutterApex, ConesOfHandPathsKeepTheirApexesWhereTheBladeWent) {
                    << (mode == CutMode::kProgressive ? "progressive" : "deferred") << ", seed "
                    << seed);
       lab::Fidelity f;
-      ASSERT_NO_FATAL_FAILURE(CutAlongHandPath(
+      ASSERT_NO_FATAL_FAILURE(CutAlongPath(
           lattice, lab::MakeHandPath(lattice, lab::PathFamily::kHand, seed), mode, &f));
       EXPECT_GT(f.crack_faces, 100u);
       EXPECT_EQ(f.overcut_faces, 0u);
@@ -71,22 +72,15 @@ TEST(CrackCutterApex, ASplitForGoodReachesWhereTheBladeTurnedInsideTheTet) {
   const TetMesh tet = kerf::testing::UnitTet();
   for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
     SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
-    TetMesh m = tet;
-    CrackCutter cutter = *CrackCutter::Create(
-        &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100}, {.mode = mode});
-    lab::FidelityMeter meter(tet);
     const Eigen::Vector2d in(0.2, -0.4), turn(0.4, 0.4), out(-0.4, 0.2);
     std::vector<BladePose> poses;
     for (int i = 0; i <= 80; ++i) {
       const double s = i / 40.0;
       const Eigen::Vector2d at = s <= 1 ? in + s * (turn - in) : turn + (s - 1) * (out - turn);
       poses.push_back({0.001 * i, {at.x(), at.y(), -0.5}, {at.x(), at.y(), 1.5}});
-      ASSERT_TRUE(cutter.ApplyPose(poses.back()).ok()) << "pose " << i;
-      if (i > 0) meter.AddStep(poses[i - 1], poses[i]);
     }
-    cutter.Finish();
-    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+    lab::Fidelity f;
+    ASSERT_NO_FATAL_FAILURE(CutAlongPath(tet, poses, mode, &f));
     EXPECT_GE(f.coverage, 0.99);
     EXPECT_EQ(f.overcut_faces, 0u);
     EXPECT_EQ(f.unpaired_faces, 0u);
@@ -103,20 +97,14 @@ TEST(CrackCutterApex, ABladeGrazingASurfaceFaceCutsUnderIt) {
   const TetMesh tet = kerf::testing::UnitTet();
   for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
     SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
-    TetMesh m = tet;
-    CrackCutter cutter = *CrackCutter::Create(
-        &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100}, {.mode = mode});
-    lab::FidelityMeter meter(tet);
     std::vector<BladePose> poses;
     for (int i = 0; i <= 60; ++i) {
       const double x = -0.3 + 1.5 * i / 60.0;
       poses.push_back({0.001 * i, {x, 0.25, 0.1}, {x, 0.25, -1}});
-      ASSERT_TRUE(cutter.ApplyPose(poses.back()).ok()) << "pose " << i;
-      if (i > 0) meter.AddStep(poses[i - 1], poses[i]);
     }
-    cutter.Finish();
-    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+    lab::Fidelity f;
+    TetMesh m;
+    ASSERT_NO_FATAL_FAILURE(CutAlongPath(tet, poses, mode, &f, &m));
     EXPECT_GT(f.samples, 0u);
     EXPECT_GE(f.coverage, 0.99);
     EXPECT_EQ(f.overcut_faces, 0u);
@@ -141,7 +129,7 @@ TEST(CrackCutterApex, TipsJustUnderTheLiversSurfaceCutUnderIt) {
                    << "seed " << seed << ", "
                    << (mode == CutMode::kProgressive ? "progressive" : "deferred"));
       lab::Fidelity f;
-      ASSERT_NO_FATAL_FAILURE(CutAlongHandPath(liver, poses, mode, &f));
+      ASSERT_NO_FATAL_FAILURE(CutAlongPath(liver, poses, mode, &f));
       EXPECT_GE(f.coverage, 0.98);
       EXPECT_EQ(f.overcut_faces, 0u);
       EXPECT_EQ(f.unpaired_faces, 0u);
@@ -177,7 +165,7 @@ TEST(CrackCutterApex, HandPathsTurningInsideTetsAreCoveredBelowTheSurface) {
                    << (c.mesh ? c.mesh : "lattice") << " hand seed " << c.seed << ", "
                    << (mode == CutMode::kProgressive ? "progressive" : "deferred"));
       lab::Fidelity f;
-      ASSERT_NO_FATAL_FAILURE(CutAlongHandPath(tissue, poses, mode, &f));
+      ASSERT_NO_FATAL_FAILURE(CutAlongPath(tissue, poses, mode, &f));
       EXPECT_GE(f.coverage_below_surface,
                 mode == CutMode::kProgressive ? c.least_progressive : c.least_deferred);
       EXPECT_EQ(f.overcut_faces, 0u);

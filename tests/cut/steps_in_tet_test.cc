@@ -73,5 +73,18 @@ TEST(StepSamplesIn, ABladeAlmostAlongAnAxisBesideTheTetIsSampledOnlyInside) {
   for (const Eigen::Vector4d& w : samples) EXPECT_GE(PointAtWeights(kUnitTet, w).x(), 0);
 }
 
+// Whether a sample at the blade's tip lies inside: a blade standing with its tip in the tet, and
+// one standing through it with its tip below.
+TEST(StepSamplesIn, TellsWhetherTheTipWentThroughTheTet) {
+  for (const double tip_z : {0.1, -1.0}) {
+    SweptPath path(8);
+    path.Add({0, {-0.5, 0.2, tip_z}, {-0.5, 0.2, 2}});
+    path.Add({1, {1.5, 0.2, tip_z}, {1.5, 0.2, 2}});
+    bool tip_inside = false;
+    EXPECT_FALSE(StepSamplesIn(kUnitTet, path, 1, 2, &tip_inside).empty());
+    EXPECT_EQ(tip_inside, tip_z > 0) << "tip at z = " << tip_z;
+  }
+}
+
 }  // namespace
 }  // namespace kerf::cut
