@@ -168,14 +168,17 @@ class CrackCutter {
 
   // Whether the point `x` (rest positions) on the element of `origins` lies within Reach of the
   // tets at it of a crack face made before, in a tet at one of `origins`: before the
-  // oldest group there is now began (the blade's visit), and not one of an open unit's own crack
-  // faces. The crack is there already.
+  // oldest group there is now began (the blade's visit), open (its two sides have vertices of
+  // their own: a face parting left shut has cut nothing yet), and not one of an open unit's own
+  // crack faces. The crack is there already.
   bool OnTheCrackAlready(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins) const;
   // Whether `x` (rest positions) lies within `reach` (m) of a crack face of a tet `t` at one of
-  // `origins` that `counts(t, key, face)` accepts.
-  bool CrackFaceWithin(
-      const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins, double reach,
-      absl::FunctionRef<bool(mesh::TetId, const FaceKey&, const CrackFace&)> counts) const;
+  // `origins` that `counts(t, ids, key, face)` accepts, `ids` the face's vertices as t names them.
+  bool CrackFaceWithin(const Eigen::Vector3d& x, std::span<const mesh::VertexId> origins,
+                       double reach,
+                       absl::FunctionRef<bool(mesh::TetId, const std::array<mesh::VertexId, 3>&,
+                                              const FaceKey&, const CrackFace&)>
+                           counts) const;
   // Where a face's crossing comes from: a step's sweep; the blade leaving the face (its farthest
   // crossing, kept a point of the face: see StaysInTheFace); or the blade withdrawn there.
   enum class FaceCrossingsFrom { kSweep, kBladeLeft, kWithdrawal };

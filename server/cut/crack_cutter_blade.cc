@@ -327,7 +327,8 @@ std::optional<Eigen::Vector3d> CrackCutter::FarthestFromTheFacesCrack(
     }
     if (beside_surface) continue;
     if (!CrackFaceWithin(RestAt(key, b), key, reach,
-                         [](TetId, const FaceKey&, const CrackFace&) { return true; })) {
+                         [](TetId, const std::array<VertexId, 3>&, const FaceKey&,
+                            const CrackFace&) { return true; })) {
       return b;
     }
   }

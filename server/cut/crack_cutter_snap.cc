@@ -87,17 +87,20 @@ Eigen::Vector3d CrackCutter::RestAt(const FaceKey& face, const Eigen::Vector3d& 
 
 bool CrackCutter::CrackFaceWithin(
     const Eigen::Vector3d& x, std::span<const VertexId> origins, double reach,
-    absl::FunctionRef<bool(TetId, const FaceKey&, const CrackFace&)> counts) const {
+    absl::FunctionRef<bool(TetId, const std::array<VertexId, 3>&, const FaceKey&, const CrackFace&)>
+        counts) const {
   for (const VertexId o : origins) {
     for (const TetId t : parting_.TetsAround(*mesh_, o)) {
       const mesh::TetVertices& c = mesh_->tet(t);
       for (const auto& f : mesh::kTetFaces) {
-        const FaceKey key = parting_.OriginKey(c[f[0]], c[f[1]], c[f[2]]);
+        const std::array<VertexId, 3> ids = {c[f[0]], c[f[1]], c[f[2]]};
+        const FaceKey key = parting_.OriginKey(ids[0], ids[1], ids[2]);
         const auto face = crack_.find(key);
-        if (face != crack_.end() && counts(t, key, face->second) &&
+        if (face != crack_.end() &&
             geometry::DistanceToTriangle(x, mesh_->rest_position(key[0]),
                                          mesh_->rest_position(key[1]),
-                                         mesh_->rest_position(key[2])) < reach) {
+                                         mesh_->rest_position(key[2])) < reach &&
+            counts(t, ids, key, face->second)) {
           return true;
         }
       }
@@ -115,16 +118,20 @@ bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
   // The reach is that of the tets there (the coverage of a cut is judged by its tet's mean edge):
   // an element's own length is longer for a tet's long edge, and a crack farther than a tet's
   // tolerance from the blade does not cover what it cuts.
-  return CrackFaceWithin(x, origins, Reach(UnitsAround({origins.begin(), origins.end()})),
-                         [&](TetId t, const FaceKey& key, const CrackFace& face) {
-                           if (face.since >= visit) return false;
-                           // An open unit's own crack faces are the crack being made, up to the
-                           // blade.
-                           const auto owner = open_.find(UnitOf(t));
-                           return owner == open_.end() ||
-                                  !std::binary_search(owner->second.crack.begin(),
-                                                      owner->second.crack.end(), key);
-                         });
+  return CrackFaceWithin(
+      x, origins, Reach(UnitsAround({origins.begin(), origins.end()})),
+      [&](TetId t, const std::array<VertexId, 3>& ids, const FaceKey& key, const CrackFace& face) {
+        if (face.since >= visit) return false;
+        // Shut, the face has a tet on either side.
+        if (mesh_->TetsAroundFace(ids[0], ids[1], ids[2]).size() > 1) {
+          return false;
+        }
+        // An open unit's own crack faces are the crack being made, up to the
+        // blade.
+        const auto owner = open_.find(UnitOf(t));
+        return owner == open_.end() ||
+               !std::binary_search(owner->second.crack.begin(), owner->second.crack.end(), key);
+      });
 }
 
 void CrackCutter::RecordEdgeCrossing(VertexId low, VertexId high, double fraction,

@@ -418,6 +418,7 @@ struct PathResult {
   double min_new_dihedral = 180;
   std::size_t new_tets = 0, slivers = 0;
   std::size_t steps = 0, lagging = 0;  // progressive: steps not covered once made
+  std::size_t lagging_below = 0;       // of those, not covered below the tissue's surface
   std::size_t chips = 0;  // pieces of one tissue tet cut free of the rest (a component)
 };
 
@@ -448,7 +449,9 @@ PathResult CutChecked(const TetMesh& tissue, CutMode mode, lab::PathFamily famil
     const std::size_t step = meter.AddStep(poses[i - 1], poses[i]);
     if (mode == CutMode::kProgressive && meter.StepSamples(step) > 0) {
       ++result.steps;
-      result.lagging += meter.StepCoverage(meter.FindCrackNearStep(m, step), step) < 1;
+      const lab::CrackFaces near = meter.FindCrackNearStep(m, step);
+      result.lagging += meter.StepCoverage(near, step) < 1;
+      result.lagging_below += meter.StepCoverageBelowSurface(near, step) < 1;
     }
   }
   cutter.Finish();
@@ -492,7 +495,7 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
       {.cells_x = 4, .cells_y = 6, .cells_z = 4, .size = Eigen::Vector3d(0.04, 0.06, 0.04)});
   for (const lab::PathFamily family : kFamilies) {
     double lowest = 1, mean = 0;
-    std::size_t new_tets = 0, slivers = 0, steps = 0, lagging = 0, chips = 0;
+    std::size_t new_tets = 0, slivers = 0, steps = 0, lagging = 0, lagging_below = 0, chips = 0;
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
       SCOPED_TRACE(::testing::Message() << lab::PathFamilyName(family) << " seed " << seed);
       const PathResult r = CutChecked(lattice, GetParam(), family, seed);
@@ -508,6 +511,7 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
       slivers += r.slivers;
       steps += r.steps;
       lagging += r.lagging;
+      lagging_below += r.lagging_below;
     }
     EXPECT_GE(mean, 0.99) << lab::PathFamilyName(family);
     // No piece of one tissue tet cut free of the rest, though the blade went on.
@@ -517,11 +521,20 @@ TEST_P(BothModes, HandPathsThroughTheLatticeAreCutWhereTheyWent) {
     if (GetParam() == CutMode::kProgressive) {
       EXPECT_GT(steps, 0u);
       EXPECT_LE((family == lab::PathFamily::kInFacePlane ? 20 : 100) * lagging, steps);
+      // Below the surface the crack reaches the blade after every step, but in faces' planes (a
+      // blade coming back beside a nick it left at the surface, hand seed 3, lagged ten poses
+      // while the nick's shut crack faces were taken for the crack there).
+      if (family != lab::PathFamily::kInFacePlane) {
+        EXPECT_EQ(lagging_below, 0u);
+      }
     }
     // At most 0.5% of the new tets under 5 degrees.
     EXPECT_LE(200 * slivers, new_tets) << lab::PathFamilyName(family);
-    std::printf("lattice, %s: coverage lowest %.3f, mean %.3f, steps lagging %zu of %zu\n",
-                std::string(lab::PathFamilyName(family)).c_str(), lowest, mean, lagging, steps);
+    std::printf(
+        "lattice, %s: coverage lowest %.3f, mean %.3f, steps lagging %zu (below the surface %zu) "
+        "of %zu\n",
+        std::string(lab::PathFamilyName(family)).c_str(), lowest, mean, lagging, lagging_below,
+        steps);
   }
 }
 
