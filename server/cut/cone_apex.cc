@@ -13,10 +13,11 @@
 
 namespace kerf::cut {
 
-Eigen::Vector4d PulledInside(const Eigen::Vector4d& w, const Eigen::Vector4d& towards) {
+Eigen::Vector4d PulledInside(const Eigen::Vector4d& w, const Eigen::Vector4d& towards,
+                             double margin) {
   double pull = 0;
   for (int k = 0; k < 4; ++k) {
-    if (w[k] < kApexMargin) pull = std::max(pull, (kApexMargin - w[k]) / (towards[k] - w[k]));
+    if (w[k] < margin) pull = std::max(pull, (margin - w[k]) / (towards[k] - w[k]));
   }
   return w + std::min(pull, 1.0) * (towards - w);
 }
@@ -111,8 +112,8 @@ ApexLine ApexLineOf(const TetCrack& crack,
 class ApexSearch {
  public:
   ApexSearch(const TetCrack& crack, const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
-             const ApexNearPath& near_path)
-      : crack_(crack), rest_(rest), near_path_(near_path) {
+             const ApexNearPath& near_path, const ApexOnPath& on_path)
+      : crack_(crack), rest_(rest), near_path_(near_path), on_path_(on_path) {
     for (int k = 0; k < 4; ++k) corner_[k] = rest(crack.corners[k]);
     reach_ = kApexReach * geometry::MeanEdgeLength(corner_[0], corner_[1], corner_[2], corner_[3]);
     line_ = ApexLineOf(crack, rest, At(Eigen::Vector4d::Constant(0.25)));
@@ -161,6 +162,19 @@ class ApexSearch {
       const Eigen::Vector3d around = At(best_near_angle >= 0 ? best_near : best);
       for (const Eigen::Vector3d& d : directions) consider(around + step * d);
     }
+    // Where none is near, where the blade went inside the tet, pulled inside by less, towards the
+    // tet's middle (the plane's is no nearer the path).
+    if (best_near_angle < 0 && on_path_ && near_path_) {
+      const std::vector<Eigen::Vector4d> went = on_path_();
+      const std::size_t stride = went.size() / kOnPathCandidates + 1;
+      for (std::size_t i = 0; i < went.size(); i += stride) {
+        const Eigen::Vector4d w =
+            PulledInside(went[i], Eigen::Vector4d::Constant(0.25), kOnPathApexMargin);
+        if (!Near(w)) continue;
+        const double angle = SmallestConeAngle(crack_, rest_, At(w));
+        if (angle > best_near_angle) best_near_angle = angle, best_near = w;
+      }
+    }
     return {best_near_angle >= 0 ? std::optional(best_near) : std::nullopt, best};
   }
 
@@ -193,6 +207,7 @@ class ApexSearch {
   const TetCrack& crack_;
   const std::function<Eigen::Vector3d(mesh::VertexId)>& rest_;
   const ApexNearPath& near_path_;
+  const ApexOnPath& on_path_;
   std::array<Eigen::Vector3d, 4> corner_;
   double reach_ = 0;
   ApexLine line_;
@@ -202,8 +217,8 @@ class ApexSearch {
 
 Eigen::Vector4d ConeApexWeights(const TetCrack& crack,
                                 const std::function<Eigen::Vector3d(mesh::VertexId)>& rest,
-                                const ApexNearPath& near_path) {
-  const ApexSearch search(crack, rest, near_path);
+                                const ApexNearPath& near_path, const ApexOnPath& on_path) {
+  const ApexSearch search(crack, rest, near_path, on_path);
   const ApexSearch::Best best = search.Run();
   return best.near ? *best.near : best.off_plane_no_farther;
 }
@@ -217,11 +232,11 @@ double SmallestConeAngle(const TetCrack& crack,
 std::optional<Eigen::Vector4d> ConeApexWithFewerSlivers(
     const TetCrack& crack, const CrackSplit& split,
     const std::function<Eigen::Vector3d(mesh::VertexId)>& rest, double degrees,
-    const ApexNearPath& near_path) {
+    const ApexNearPath& near_path, const ApexOnPath& on_path) {
   if (split.kind == CrackSplitKind::kWhole) return std::nullopt;
   const int split_slivers = PiecesUnder(split, rest, degrees);
   if (split_slivers == 0) return std::nullopt;
-  const Eigen::Vector4d apex = ConeApexWeights(crack, rest, near_path);
+  const Eigen::Vector4d apex = ConeApexWeights(crack, rest, near_path, on_path);
   if (ConePiecesUnder(crack, rest, PointAt(crack, rest, apex), degrees) >= split_slivers) {
     return std::nullopt;
   }

@@ -430,6 +430,9 @@ class CrackCutter {
   // The pose the step in which the blade first met the unit starts at (met_at_); none for a unit
   // the blade never met.
   std::optional<std::size_t> FirstPoseIn(mesh::TetId unit) const;
+  // Samples of the blade's steps inside the unit since it first met it (StepSamplesIn, its
+  // `tip_inside` too), weights on its corners; none for a unit the blade never met.
+  std::vector<Eigen::Vector4d> StepsInUnit(mesh::TetId unit, bool* tip_inside = nullptr) const;
   // Whether a point (barycentric on `corners`, the unit's origins) lies within kApexReach of the
   // unit's mean edge of the surface the blade swept since it first met the unit (met_at_); null
   // for a unit the blade never met.

@@ -50,23 +50,25 @@ bool CrackCutter::TraceInTheTissueSurface(const TetCrack& crack) const {
   });
 }
 
+std::vector<Eigen::Vector4d> CrackCutter::StepsInUnit(TetId unit, bool* tip_inside) const {
+  const std::optional<std::size_t> met = FirstPoseIn(unit);
+  if (!met) return {};
+  const std::size_t first = std::max(*met, swept_.first());
+  if (first >= poses_) return {};
+  const mesh::TetVertices placed = PlacedCorners(unit);
+  std::array<Eigen::Vector3d, 4> now;
+  for (int k = 0; k < 4; ++k) now[k] = mesh_->current_position(placed[k]);
+  return StepSamplesIn(now, swept_, first, poses_, tip_inside);
+}
+
 std::optional<CrackCutter::CoveringApex> CrackCutter::ApexCoveringTheSteps(
     TetId unit, const TetCrack& crack, const CrackSplit* split,
     const std::optional<Eigen::Vector4d>& apex, bool apex_on_crack) const {
-  const std::optional<std::size_t> met = FirstPoseIn(unit);
-  if (!met) return std::nullopt;
-  const std::size_t first = std::max(*met, swept_.first());
-  if (first >= poses_) return std::nullopt;
-  const mesh::TetVertices placed = PlacedCorners(unit);
-  std::array<Eigen::Vector3d, 4> now, rest;
-  for (int k = 0; k < 4; ++k) {
-    now[k] = mesh_->current_position(placed[k]);
-    rest[k] = mesh_->rest_position(crack.corners[k]);
-  }
   bool tip_inside = false;
-  const std::vector<Eigen::Vector4d> samples =
-      StepSamplesIn(now, swept_, first, poses_, &tip_inside);
+  const std::vector<Eigen::Vector4d> samples = StepsInUnit(unit, &tip_inside);
   if (samples.empty()) return std::nullopt;
+  std::array<Eigen::Vector3d, 4> rest;
+  for (int k = 0; k < 4; ++k) rest[k] = mesh_->rest_position(crack.corners[k]);
   // The crack faces of a split, a cone's apex (kNoVertex) at `at`.
   const auto faces_of = [&](const CrackSplit& s, const Eigen::Vector4d& at) {
     const Eigen::Vector3d apex_at = PointAtWeights(rest, at);

@@ -154,13 +154,14 @@ std::vector<VertexId> CrackCutter::SplitUnit(TetId unit, const BladeIn* blade,
   std::optional<Eigen::Vector4d> cone_apex;
   bool apex_on_crack = blade != nullptr;
   if (blade == nullptr && !stood) {
+    const ApexOnPath on_path = [&] { return StepsInUnit(unit); };
     if (const auto withdrawn = WithdrawnApex(unit, crack, /*fits_without=*/split.has_value())) {
       cone_apex = withdrawn, apex_on_crack = true;
     } else if (split) {
       cone_apex = ConeApexWithFewerSlivers(crack, *split, rest, kSliverAngleDeg,
-                                           NearPath(unit, crack.corners));
+                                           NearPath(unit, crack.corners), on_path);
     } else {
-      cone_apex = ConeApexWeights(crack, rest, NearPath(unit, crack.corners));
+      cone_apex = ConeApexWeights(crack, rest, NearPath(unit, crack.corners), on_path);
     }
     if (const auto closer = ApexCoveringTheSteps(unit, crack, cone_apex ? nullptr : &*split,
                                                  cone_apex, apex_on_crack)) {

@@ -165,5 +165,35 @@ TEST(ConeApex, AnApexAwayFromTheBladesPathIsNotTaken) {
   EXPECT_GE(refused.minCoeff(), kApexMargin - 1e-12);
 }
 
+// Where the blade's path comes near no candidate on the traces' plane (it went by the tet's corner
+// 0, the crack's plane cutting off corner 3), the points where it went are tried, pulled inside by
+// kOnPathApexMargin: the apex is near the path, and the points are asked for only then.
+TEST(ConeApex, WhereNoCandidateIsNearThePathTheApexIsWhereTheBladeWent) {
+  OneTet tet = CornerThreeCutOff();
+  const TetCrack crack = tet.Crack();
+  const auto rest = tet.RestOf();
+  const Eigen::Vector4d went(0.86, 0.06, 0.04, 0.04);
+  // Pulled inside by kOnPathApexMargin, `went` moves about 0.2 (by kApexMargin, 0.35).
+  const ApexNearPath near_corner = [&](const Eigen::Vector4d& w) {
+    return (w - went).norm() < 0.25;
+  };
+  int asked = 0;
+  const ApexOnPath on_path = [&] {
+    ++asked;
+    return std::vector<Eigen::Vector4d>{Eigen::Vector4d::Constant(0.25), went};
+  };
+  const Eigen::Vector4d chosen = ConeApexWeights(crack, rest, near_corner, on_path);
+  EXPECT_EQ(asked, 1);
+  EXPECT_TRUE(near_corner(chosen));
+  EXPECT_GE(chosen.minCoeff(), kOnPathApexMargin - 1e-12);
+  EXPECT_LT(chosen.minCoeff(), kApexMargin);
+  // Without them, no candidate is near: the apex is the plane's, off the path.
+  EXPECT_FALSE(near_corner(ConeApexWeights(crack, rest, near_corner)));
+  // Where a candidate on the plane is near, they are not asked for.
+  ConeApexWeights(
+      crack, rest, [](const Eigen::Vector4d&) { return true; }, on_path);
+  EXPECT_EQ(asked, 1);
+}
+
 }  // namespace
 }  // namespace kerf::cut
