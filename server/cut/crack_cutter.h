@@ -440,12 +440,13 @@ class CrackCutter {
   // For good: the apex of a cone that covers the blade's steps inside the unit (StepSamplesIn,
   // since the blade first met it) better than the split to make (`split`, or if null the cone
   // from `apex`, on its crack if `apex_on_crack`): where samples lie farther than
-  // kStepCoverReach of the tissue's edge from that split's crack, the farthest pulled inside
-  // (PulledInside), if it lies near the path (NearPath), its cone has no piece under
-  // kCoveringConeAngleDeg and leaves fewer samples that far. Where the split's crack has no face,
-  // its traces lie in the tissue's surface (TraceInTheTissueSurface) and the blade's tip went
-  // through the unit, the blade grazed the surface and cut under it: the apex is on the cone's
-  // crack, which runs from the traces to it.
+  // kStepCoverReach of the tissue's edge from that split's crack, of the farthest and
+  // kCoveringApexCandidates more spread over the samples, each pulled inside (PulledInside), the
+  // one whose cone leaves fewest samples that far (fewer than the split), among those near the
+  // path (NearPath) whose cone has no piece under kCoveringConeAngleDeg. Where the split's crack
+  // has no face, its traces lie in the tissue's surface (TraceInTheTissueSurface) and the blade's
+  // tip went through the unit, the blade grazed the surface and cut under it: the apex is on the
+  // cone's crack, which runs from the traces to it.
   struct CoveringApex {
     Eigen::Vector4d weights;
     bool on_crack = false;

@@ -90,14 +90,23 @@ std::optional<CrackCutter::CoveringApex> CrackCutter::ApexCoveringTheSteps(
   const SamplesFrom now_from = Measure(samples, rest, now_faces, reach);
   if (now_from.beyond == 0) return std::nullopt;
   const auto rest_of = [&](VertexId v) -> Eigen::Vector3d { return mesh_->rest_position(v); };
-  const Eigen::Vector4d through = PulledInside(now_from.farthest);
-  if (SmallestConeAngle(crack, rest_of, through) < kCoveringConeAngleDeg ||
-      !NearPath(unit, crack.corners)(through)) {
-    return std::nullopt;
+  // Of the farthest sample and a few spread over them, the one whose cone leaves fewest beyond.
+  const ApexNearPath near_path = NearPath(unit, crack.corners);
+  std::vector<Eigen::Vector4d> candidates = {now_from.farthest};
+  const std::size_t stride = samples.size() / kCoveringApexCandidates + 1;
+  for (std::size_t i = 0; i < samples.size(); i += stride) candidates.push_back(samples[i]);
+  std::optional<Eigen::Vector4d> best;
+  int best_beyond = now_from.beyond;
+  for (const Eigen::Vector4d& candidate : candidates) {
+    const Eigen::Vector4d w = PulledInside(candidate);
+    if (SmallestConeAngle(crack, rest_of, w) < kCoveringConeAngleDeg || !near_path(w)) continue;
+    const SamplesFrom cone_from =
+        Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex, on_crack), w), reach);
+    if (cone_from.beyond < best_beyond) best_beyond = cone_from.beyond, best = w;
+    if (best_beyond == 0) break;  // none does better
   }
-  const SamplesFrom cone_from =
-      Measure(samples, rest, faces_of(SplitAsCone(crack, kNoVertex, on_crack), through), reach);
-  if (cone_from.beyond >= now_from.beyond) return std::nullopt;
+  if (!best) return std::nullopt;
+  const Eigen::Vector4d through = *best;
   return CoveringApex{through, on_crack};
 }
 

@@ -48,6 +48,9 @@ inline constexpr double kStepCoverReach = 0.2;
 // (5-10 degrees) let the liver's progressive live cut without snapping, under backward Euler and
 // the corotational law, reach 10 times its first pose's energy (tests/lab/live_cut_test.cc).
 inline constexpr double kCoveringConeAngleDeg = 10;
+// The samples tried as such a cone's apex besides the farthest, spread evenly (the farthest's
+// cone is often under the angle where the blade turned inside the tet; 32 measured the same).
+inline constexpr int kCoveringApexCandidates = 16;
 // The crack runs along an edge between two vertices snapped onto it where the edge's middle lies
 // within this share of the tissue's edge there of the surface the blade swept between the two
 // snaps (beyond the fidelity meter's tolerance for a crack face's middle, 0.25, so a curved
