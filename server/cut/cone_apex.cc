@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "cut/steps_in_tet.h"
 #include "geometry/tet_measures.h"
 #include "mesh/tet_mesh.h"
 
@@ -165,11 +166,9 @@ class ApexSearch {
     // Where none is near, where the blade went inside the tet, pulled inside by less, towards the
     // tet's middle (the plane's is no nearer the path).
     if (best_near_angle < 0 && on_path_ && near_path_) {
-      const std::vector<Eigen::Vector4d> went = on_path_();
-      const std::size_t stride = went.size() / kOnPathCandidates + 1;
-      for (std::size_t i = 0; i < went.size(); i += stride) {
+      for (const Eigen::Vector4d& went : SpreadEvenly(on_path_(), kOnPathCandidates)) {
         const Eigen::Vector4d w =
-            PulledInside(went[i], Eigen::Vector4d::Constant(0.25), kOnPathApexMargin);
+            PulledInside(went, Eigen::Vector4d::Constant(0.25), kOnPathApexMargin);
         if (!Near(w)) continue;
         const double angle = SmallestConeAngle(crack_, rest_, At(w));
         if (angle > best_near_angle) best_near_angle = angle, best_near = w;

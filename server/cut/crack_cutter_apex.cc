@@ -93,8 +93,9 @@ std::optional<CrackCutter::CoveringApex> CrackCutter::ApexCoveringTheSteps(
   // Of the farthest sample and a few spread over them, the one whose cone leaves fewest beyond.
   const ApexNearPath near_path = NearPath(unit, crack.corners);
   std::vector<Eigen::Vector4d> candidates = {now_from.farthest};
-  const std::size_t stride = samples.size() / kCoveringApexCandidates + 1;
-  for (std::size_t i = 0; i < samples.size(); i += stride) candidates.push_back(samples[i]);
+  for (const Eigen::Vector4d& w : SpreadEvenly(samples, kCoveringApexCandidates)) {
+    candidates.push_back(w);
+  }
   std::optional<Eigen::Vector4d> best;
   int best_beyond = now_from.beyond;
   for (const Eigen::Vector4d& candidate : candidates) {
@@ -106,8 +107,7 @@ std::optional<CrackCutter::CoveringApex> CrackCutter::ApexCoveringTheSteps(
     if (best_beyond == 0) break;  // none does better
   }
   if (!best) return std::nullopt;
-  const Eigen::Vector4d through = *best;
-  return CoveringApex{through, on_crack};
+  return CoveringApex{*best, on_crack};
 }
 
 }  // namespace kerf::cut

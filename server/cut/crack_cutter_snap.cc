@@ -123,11 +123,8 @@ bool CrackCutter::OnTheCrackAlready(const Eigen::Vector3d& x,
       [&](TetId t, const std::array<VertexId, 3>& ids, const FaceKey& key, const CrackFace& face) {
         if (face.since >= visit) return false;
         // Shut, the face has a tet on either side.
-        if (mesh_->TetsAroundFace(ids[0], ids[1], ids[2]).size() > 1) {
-          return false;
-        }
-        // An open unit's own crack faces are the crack being made, up to the
-        // blade.
+        if (mesh_->TetsAroundFace(ids[0], ids[1], ids[2]).size() > 1) return false;
+        // An open unit's own crack faces are the crack being made, up to the blade.
         const auto owner = open_.find(UnitOf(t));
         return owner == open_.end() ||
                !std::binary_search(owner->second.crack.begin(), owner->second.crack.end(), key);

@@ -27,9 +27,18 @@ std::pair<int, int> SamplesInBox(const Eigen::Vector3d& tip, const Eigen::Vector
   return {static_cast<int>(std::ceil(from)), static_cast<int>(std::floor(to))};
 }
 
+std::vector<Eigen::Vector4d> SpreadEvenly(const std::vector<Eigen::Vector4d>& samples,
+                                          std::size_t at_most) {
+  std::vector<Eigen::Vector4d> spread;
+  const std::size_t stride = samples.size() / at_most + 1;
+  for (std::size_t i = 0; i < samples.size(); i += stride) spread.push_back(samples[i]);
+  return spread;
+}
+
 std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>& corners,
                                            const SweptPath& path, std::size_t first,
                                            std::size_t last, bool* tip_inside) {
+  if (tip_inside != nullptr) *tip_inside = false;
   std::vector<Eigen::Vector4d> samples;
   Eigen::Matrix3d frame;
   frame << corners[1] - corners[0], corners[2] - corners[0], corners[3] - corners[0];

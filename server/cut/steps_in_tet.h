@@ -35,6 +35,11 @@ std::vector<Eigen::Vector4d> StepSamplesIn(const std::array<Eigen::Vector3d, 4>&
                                            const SweptPath& path, std::size_t first,
                                            std::size_t last, bool* tip_inside = nullptr);
 
+// At most `at_most` of `samples`, spread evenly from the first (every k-th, k the least that
+// keeps them within the bound: all of them where there are fewer).
+std::vector<Eigen::Vector4d> SpreadEvenly(const std::vector<Eigen::Vector4d>& samples,
+                                          std::size_t at_most);
+
 // The samples tip + j along (0 <= j < kBladeSamples) inside the box from `low` to `high`: those
 // from the first to the second, within [0, kBladeSamples), or none (the second smaller).
 std::pair<int, int> SamplesInBox(const Eigen::Vector3d& tip, const Eigen::Vector3d& along,

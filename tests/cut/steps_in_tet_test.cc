@@ -80,10 +80,21 @@ TEST(StepSamplesIn, TellsWhetherTheTipWentThroughTheTet) {
     SweptPath path(8);
     path.Add({0, {-0.5, 0.2, tip_z}, {-0.5, 0.2, 2}});
     path.Add({1, {1.5, 0.2, tip_z}, {1.5, 0.2, 2}});
-    bool tip_inside = false;
+    bool tip_inside = tip_z < 0;  // set whatever it held
     EXPECT_FALSE(StepSamplesIn(kUnitTet, path, 1, 2, &tip_inside).empty());
     EXPECT_EQ(tip_inside, tip_z > 0) << "tip at z = " << tip_z;
   }
+}
+
+// At most the bound, from the first, evenly: of 100, every seventh (15); of fewer, all.
+TEST(SpreadEvenly, KeepsAtMostTheBoundFromTheFirst) {
+  std::vector<Eigen::Vector4d> samples;
+  for (int i = 0; i < 100; ++i) samples.push_back(Eigen::Vector4d(i, 0, 0, 0));
+  const std::vector<Eigen::Vector4d> spread = SpreadEvenly(samples, 16);
+  ASSERT_EQ(spread.size(), 15u);
+  for (std::size_t k = 0; k < spread.size(); ++k) EXPECT_EQ(spread[k][0], 7.0 * k);
+  EXPECT_EQ(SpreadEvenly({samples.begin(), samples.begin() + 5}, 16).size(), 5u);
+  EXPECT_TRUE(SpreadEvenly({}, 16).empty());
 }
 
 }  // namespace
