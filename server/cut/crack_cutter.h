@@ -238,6 +238,9 @@ class CrackCutter {
   // Whether `v` may snap onto the crack: it lies within Reach of its units of the step's swept
   // surface and, for a crossing the blade swept (`from`), snapping it would not lay the crack on
   // the tissue's surface (the blade passing through it to the least snapping, it may).
+  // How far a vertex is from where the step's swept surface crosses the tissue's surface
+  // triangles at it (current positions); none where it crosses none (or off the surface).
+  std::optional<double> DistanceToTheEntry(mesh::VertexId v) const;
   bool MaySnap(mesh::VertexId v, EdgeCrossingFrom from = EdgeCrossingFrom::kSweep) const;
   // Whether snapping `v`, a vertex of the tissue's surface, would lay the crack on the surface
   // and lose what the blade cut under it: the tip's path passes within `reach` (m) of the point
@@ -389,6 +392,11 @@ class CrackCutter {
   bool SamePieces(const std::vector<mesh::TetId>& pieces,
                   const std::vector<mesh::TetVertices>& split) const;
   std::array<FacePoints, 4> PointsOf(const mesh::TetVertices& corners, const BladeIn* blade);
+  // The hub of face `key` (its three edge points, weights on key's vertices), for good: their
+  // middle, or where that is over kStepCoverReach l off the blade's path since a unit at the face
+  // met it, of it and the points 0.25 and 0.55 of the way to each edge point, the nearest the path.
+  Eigen::Vector3d HubNearThePath(const FaceKey& key,
+                                 const std::array<Eigen::Vector3d, 3>& edge_points) const;
   // Where the blade crosses the face `key` (barycentric on its vertices), which has a point for
   // good, well inside a triangle of that point's fan: a temporary point beside it (p->beside), so
   // the crack runs from where the tip's path crossed the face to the blade. Else nothing.

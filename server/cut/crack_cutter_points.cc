@@ -5,12 +5,20 @@
 #include "base/check.h"
 #include "cut/crack_cutter.h"
 #include "cut/fan_triangle.h"
+#include "geometry/point_triangle_distance.h"
 
 namespace kerf::cut {
 namespace {
 
 using mesh::Index;
 using mesh::VertexId;
+
+// The middle of three points given by their weights, summed a third at a time.
+Eigen::Vector3d MiddleOfThree(const std::array<Eigen::Vector3d, 3>& points) {
+  Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) middle += p / 3;
+  return middle;
+}
 
 }  // namespace
 
@@ -63,9 +71,9 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
       p.inside =
           TemporaryVertex(FacePlace(key), {key[0], key[1], key[2], key[0]}, {b[0], b[1], b[2], 0});
     } else if (NeedsHub(p)) {
-      // The hub: the middle of the three edge points, on the face's vertices in key order;
-      // temporary if one of them is.
-      Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+      // The hub: the middle of the three edge points (weights on the face's vertices in key
+      // order), temporary if one of them is; for good, nearer the blade's path where it is off it.
+      std::array<Eigen::Vector3d, 3> edge_points;
       for (int j = 0; j < 3; ++j) {
         const VertexId a = p.corners[j], b = p.corners[(j + 1) % 3];
         const EdgeKey edge = MakeEdgeKey(a, b);
@@ -73,16 +81,18 @@ std::array<FacePoints, 4> CrackCutter::PointsOf(const mesh::TetVertices& corners
         const std::optional<double> moving = blade_fraction(edge);
         const double fraction = moving ? *moving : edge_points_.at(edge).fraction;
         const auto [low, high] = EdgeEnds(edge);
+        edge_points[j] = Eigen::Vector3d::Zero();
         for (int i = 0; i < 3; ++i) {
-          if (key[i] == low) weights[i] += (1 - fraction) / 3;
-          if (key[i] == high) weights[i] += fraction / 3;
+          if (key[i] == low) edge_points[j][i] += 1 - fraction;
+          if (key[i] == high) edge_points[j][i] += fraction;
         }
       }
       if (temporary) {
+        const Eigen::Vector3d middle = MiddleOfThree(edge_points);
         p.inside = TemporaryVertex(FacePlace(key), {key[0], key[1], key[2], key[0]},
-                                   {weights[0], weights[1], weights[2], 0});
+                                   {middle[0], middle[1], middle[2], 0});
       } else {
-        face_points_[key] = {weights};
+        face_points_[key] = {HubNearThePath(key, edge_points)};
         p.inside = FacePointVertex(key);
       }
     }
@@ -222,6 +232,44 @@ VertexId CrackCutter::MakeVertex(const std::array<VertexId, 4>& origins,
   recipe_[v] = {origins, weights, ScaleOf(origins, weights)};
   new_points_.push_back(v);
   return v;
+}
+
+Eigen::Vector3d CrackCutter::HubNearThePath(
+    const FaceKey& key, const std::array<Eigen::Vector3d, 3>& edge_points) const {
+  Eigen::Vector3d middle = MiddleOfThree(edge_points);
+  std::optional<std::size_t> first;
+  for (const mesh::TetId u : UnitsAround({key[0], key[1], key[2]})) {
+    const std::optional<std::size_t> met = FirstPoseIn(u);
+    if (met) first = first ? std::min(*first, *met) : *met;
+  }
+  if (!first || *first < swept_.first()) return middle;
+  const double reach = LengthsOf(key).tissue_edge();
+  const auto off_path = [&](const Eigen::Vector3d& w) {
+    const Eigen::Vector3d x = w[0] * mesh_->current_position(key[0]) +
+                              w[1] * mesh_->current_position(key[1]) +
+                              w[2] * mesh_->current_position(key[2]);
+    double nearest = reach;
+    swept_.ForEachStepNear(*first, poses_, x, x, reach, [&](std::size_t i) {
+      const BladePose& a = swept_.at(i);
+      const BladePose& b = swept_.at(i + 1);
+      nearest = std::min({nearest, geometry::DistanceToTriangle(x, a.tip, a.heel, b.heel),
+                          geometry::DistanceToTriangle(x, a.tip, b.heel, b.tip)});
+      return true;
+    });
+    return nearest;
+  };
+  Eigen::Vector3d best = middle;
+  double best_off = off_path(middle);
+  if (best_off <= kStepCoverReach * reach) return middle;
+  for (const double a : {0.5, 0.7}) {
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d w =
+          a * edge_points[j] + (1 - a) / 2 * (edge_points[(j + 1) % 3] + edge_points[(j + 2) % 3]);
+      const double off = off_path(w);
+      if (off < best_off) best = w, best_off = off;
+    }
+  }
+  return best;
 }
 
 double CrackCutter::ScaleOf(const std::array<VertexId, 4>& origins,

@@ -10,6 +10,7 @@
 #include "geometry/point_triangle_distance.h"
 #include "geometry/segment_distance.h"
 #include "geometry/tet_measures.h"
+#include "geometry/triangle_crossing.h"
 
 namespace kerf::cut {
 namespace {
@@ -269,12 +270,41 @@ bool CrackCutter::MaySnap(VertexId v, EdgeCrossingFrom from) const {
   const double distance = DistanceToStep(mesh_->current_position(v));
   const double reach = Reach(units);
   if (distance > reach) return false;
-  // A vertex of the tissue's surface the blade swept past (not through, to the least snapping)
-  // stays off the crack where the crack would then lie on the surface, and what the blade cut
-  // under it be lost. Where the blade lay across an edge and left it, the pieces around stood on
-  // its point: that snaps as anywhere, so the crack does not jump as the blade goes.
-  return from != EdgeCrossingFrom::kSweep || distance <= kMinSnapFraction / kSnapReach * reach ||
-         !SnapWouldLayCrackOnSurface(v, reach);
+  // Where the blade lay across an edge and left it, the pieces around stood on its point: that
+  // snaps as anywhere, so the crack does not jump as the blade goes.
+  if (from != EdgeCrossingFrom::kSweep) return true;
+  // The blade through the vertex (to the least snapping) takes it.
+  if (distance <= kMinSnapFraction / kSnapReach * reach) return true;
+  // Where the blade came in through the tissue's surface beside a vertex of it, snapping moves
+  // the crack's rim there: farther than the reach, the cut along the rim would be lost (an
+  // oblique blade passes nearer the vertex than its way in does). Not to the least snapping,
+  // which snaps only vertices the blade all but passes through (and moves none for quality).
+  if (snap_fraction_ > kMinSnapFraction) {
+    const std::optional<double> entry = DistanceToTheEntry(v);
+    if (entry && *entry > reach) return false;
+  }
+  // A vertex of the tissue's surface the blade swept past stays off the crack where the crack
+  // would then lie on the surface, and what the blade cut under it be lost.
+  return !SnapWouldLayCrackOnSurface(v, reach);
+}
+
+std::optional<double> CrackCutter::DistanceToTheEntry(VertexId v) const {
+  if (!step_) return std::nullopt;
+  const auto& [from, to] = *step_;
+  const std::array<std::array<Eigen::Vector3d, 3>, 2> swept = {
+      {{from.tip, from.heel, to.heel}, {from.tip, to.heel, to.tip}}};
+  const Eigen::Vector3d& x = mesh_->current_position(v);
+  std::optional<double> nearest;
+  for (const auto& triangle : surface_.TrianglesAt(v)) {
+    const auto at = [&](int k) { return mesh_->current_position(triangle[k]); };
+    for (const auto& s : swept) {
+      const auto crossing = geometry::TrianglesCross(at(0), at(1), at(2), s[0], s[1], s[2]);
+      if (!crossing) continue;
+      const double d = geometry::DistanceToSegment(x, (*crossing)[0], (*crossing)[1]);
+      nearest = nearest ? std::min(*nearest, d) : d;
+    }
+  }
+  return nearest;
 }
 
 double CrackCutter::Reach(const std::vector<TetId>& units) const {

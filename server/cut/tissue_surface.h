@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <span>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
@@ -24,6 +25,12 @@ class TissueSurface {
     return edges_.contains(MakeEdgeKey(a, b));
   }
   bool HasFace(const FaceKey& key) const { return faces_.contains(key); }
+  // The surface's triangles at v (none for a vertex not on it).
+  std::span<const std::array<mesh::VertexId, 3>> TrianglesAt(mesh::VertexId v) const {
+    const auto it = triangles_.find(v);
+    if (it == triangles_.end()) return {};
+    return it->second;
+  }
   // The outward normal at a vertex of the surface (its triangles' normals summed, weighted by
   // their areas) on the mesh's current positions; zero for a vertex not on it.
   Eigen::Vector3d Normal(const mesh::TetMesh& mesh, mesh::VertexId v) const;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -45,12 +46,15 @@ TEST(CrackCutter, CutsThroughPiecesSnapAsFarAsThroughTheirTet) {
 
 // A blade sweeping the plane 0.27 of the way up edge 0-1, in a tet whose corners 0 and 1 stand
 // 45 degrees apart as seen from edge 2-3 (its dihedral angle there): the crossing makes a point
-// there and the tet is cut, its bottom corners, 0.27 of an edge below the blade, within the snap
-// band and snapped. At 17 degrees a tet bisected at that point would leave a half of 4.6 degrees,
-// and the crossing would be taken at corner 0; but that tet is so flat that the blade sweeps along
-// its bottom face, which lies on the tissue's surface, 0.08 of its mean edge above it: snapped,
-// its corners would lay the crack on the surface and nothing be cut. They stay off it (the
-// crossing near corner 0 moves away from it instead) and the skin under the blade is cut.
+// there and the tet is cut. Its bottom corners 2 and 3 lie within the snap band of the blade but
+// 0.47 from where it comes in through the tet's sides (every face is the tissue's surface):
+// snapped, they would move the crack's rim that far, so they stay off it. At 17 degrees a tet
+// bisected at that point would leave a half of 4.6 degrees, and the crossing would be taken at
+// corner 0; but that tet is so flat that the blade sweeps along its bottom face, which lies on the
+// tissue's surface, 0.08 of its mean edge above it: snapped, its corners would lay the crack on the
+// surface and nothing be cut. They stay off it (the crossing near corner 0 moves away from it
+// instead) and the skin under the blade is cut. Either way all the blade swept is covered, no piece
+// under 5 degrees.
 TEST(CrackCutter, ACrossingThatWouldLeaveASliverSnapsToItsCorner) {
   for (const double height : {0.3, 1.0}) {
     SCOPED_TRACE(::testing::Message() << "corner 1 at height " << height);
@@ -62,23 +66,27 @@ TEST(CrackCutter, ACrossingThatWouldLeaveASliverSnapsToItsCorner) {
     ASSERT_TRUE(
         m.AddTet({mesh::VertexId(0), mesh::VertexId(1), mesh::VertexId(2), mesh::VertexId(3)})
             .ok());
+    const TetMesh tissue = m;
     CrackCutter cutter =
         *CrackCutter::Create(&m, 1, {.max_length = 10, .max_step = 10, .max_speed = 100});
     const double z = 0.27 * height;
-    ASSERT_TRUE(cutter.ApplyPose({0, {-1, -2, z}, {3, -2, z}}).ok());
-    ASSERT_TRUE(cutter.ApplyPose({0.1, {-1, 2, z}, {3, 2, z}}).ok());
+    const BladePose from{0, {-1, -2, z}, {3, -2, z}}, to{0.1, {-1, 2, z}, {3, 2, z}};
+    ASSERT_TRUE(cutter.ApplyPose(from).ok());
+    ASSERT_TRUE(cutter.ApplyPose(to).ok());
     cutter.Finish();
     ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
     const bool point_on_edge = std::any_of(m.vertices().begin(), m.vertices().end(), [&](auto v) {
       return (m.rest_position(v) - Eigen::Vector3d(1, 0, z)).norm() < 1e-12;
     });
     EXPECT_EQ(point_on_edge, height == 1.0);
-    if (height == 1.0) {
-      EXPECT_EQ(cutter.statistics().snapped_vertices, 3u);
-    } else {
-      EXPECT_LT(cutter.statistics().snapped_vertices, 3u);  // the bottom face stays off the crack
-    }
+    EXPECT_LT(cutter.statistics().snapped_vertices, 3u);  // the bottom face stays off the crack
     EXPECT_EQ(cutter.statistics().cut_tets, 1u);
+    lab::FidelityMeter meter(tissue);
+    meter.AddStep(from, to);
+    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+    EXPECT_EQ(f.coverage, 1);
+    EXPECT_EQ(f.overcut_faces, 0u);
+    EXPECT_GE(mesh::MeasureMeshQuality(m).min_dihedral_deg, 5);
   }
 }
 
@@ -339,6 +347,38 @@ TEST(CrackCutter, ABladeGrazingTheSurfaceCutsTheSkinUnderIt) {
       EXPECT_GE(f.coverage, flat ? 0.97 : 1.0);
       EXPECT_EQ(f.overcut_faces, 0u);
     }
+  }
+}
+
+// A blade coming in through the box's top 35 degrees from it, its edge running along y at
+// x = 0.616 there and its tip deep inside: the top's vertices at x = 1 lie 0.22 under the blade's
+// plane, within the snap reach, but 0.38 from where it came in. Snapped, they moved the crack's rim
+// to them, and 0.962 of the swept surface was covered; they stay off the crack, and all is.
+TEST(CrackCutter, ABladeComingInObliquelyCutsAlongItsWayIn) {
+  for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
+    SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
+    TetMesh m = *mesh::MakeBoxLattice({.cells_x = 3, .cells_y = 3, .cells_z = 2});
+    const TetMesh tissue = m;
+    CrackCutter cutter = *CrackCutter::Create(
+        &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 1000}, {.mode = mode});
+    lab::FidelityMeter meter(tissue);
+    const double angle = 35 * M_PI / 180;
+    const Eigen::Vector3d down(std::cos(angle), 0, -std::sin(angle));
+    std::optional<BladePose> last;
+    for (int k = 0; k <= 16; ++k) {
+      const Eigen::Vector3d way_in(0.616, -0.5 + 0.25 * k, 2);
+      const BladePose pose{0.01 * k, way_in + 2 * down, way_in - 0.5 * down};
+      ASSERT_TRUE(cutter.ApplyPose(pose).ok());
+      if (last) meter.AddStep(*last, pose);
+      last = pose;
+    }
+    cutter.Finish();
+    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
+    EXPECT_GT(f.samples, 100u);
+    EXPECT_EQ(f.coverage, 1);
+    EXPECT_EQ(f.overcut_faces, 0u);
+    EXPECT_EQ(f.unpaired_faces, 0u);
   }
 }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "mesh/box_lattice.h"
 
 namespace kerf::cut {
@@ -38,6 +40,28 @@ TEST_F(TissueSurfaceTest, HoldsTheBoundaryAndNothingInside) {
     }
   }
   EXPECT_EQ(boundary_faces, 6 * 4 * 2);  // two triangles for each of the 24 squares
+}
+
+TEST_F(TissueSurfaceTest, TrianglesAtAVertexAreTheSurfacesAroundIt) {
+  EXPECT_TRUE(surface_.TrianglesAt(At({1, 1, 1})).empty());
+  // The top's middle: as many as the boundary faces of the lattice's tets at it.
+  const mesh::VertexId top = At({1, 1, 2});
+  std::size_t faces_at_top = 0;
+  for (const mesh::TetId t : lattice_.tets()) {
+    const mesh::TetVertices& v = lattice_.tet(t);
+    for (const auto& f : mesh::kTetFaces) {
+      const FaceKey key = MakeFaceKey(v[f[0]], v[f[1]], v[f[2]]);
+      faces_at_top += surface_.HasFace(key) && std::find(key.begin(), key.end(), top) != key.end();
+    }
+  }
+  const auto around = surface_.TrianglesAt(top);
+  EXPECT_GE(around.size(), 4u);
+  EXPECT_EQ(around.size(), faces_at_top);
+  for (const auto& t : around) {
+    EXPECT_NE(std::find(t.begin(), t.end(), top), t.end());
+    EXPECT_TRUE(surface_.HasFace(MakeFaceKey(t[0], t[1], t[2])));
+    for (const mesh::VertexId v : t) EXPECT_EQ(lattice_.rest_position(v).z(), 2);
+  }
 }
 
 TEST_F(TissueSurfaceTest, TheNormalPointsOutOnCurrentPositions) {
