@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <vector>
 
 #include "cut/crack_cutter.h"
+#include "cut/cut_statistics.h"
 #include "lab/crack_fidelity.h"
 #include "mesh/box_lattice.h"
 #include "mesh/connected_components.h"
@@ -278,38 +278,52 @@ TEST(CrackCutter, ChipsSideBySideHoldByEachOther) {
   EXPECT_EQ(mesh::FindConnectedComponents(m).count, 1u);
 }
 
+// Cuts `tissue` along `poses` in `mode` (cell size 1) and withdraws the blade: the mesh valid, the
+// crack's fidelity to the path, and the cutter's counts.
+struct LatticeCut {
+  lab::Fidelity fidelity;
+  CutStatistics statistics;
+};
+void CutAlong(const TetMesh& tissue, const std::vector<BladePose>& poses, CutMode mode,
+              LatticeCut* cut) {
+  TetMesh m = tissue;
+  CrackCutter cutter = *CrackCutter::Create(
+      &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 1000}, {.mode = mode});
+  lab::FidelityMeter meter(tissue);
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    ASSERT_TRUE(cutter.ApplyPose(poses[k]).ok()) << "pose " << k;
+    if (k > 0) meter.AddStep(poses[k - 1], poses[k]);
+  }
+  cutter.Finish();
+  ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
+  cut->fidelity = meter.Measure(meter.FindCrack(m));
+  cut->statistics = cutter.statistics();
+}
+
 // A blade runs with its tip along a line of vertices inside a lattice (y = 2, z = 1) out to its
 // side x = 0, slides along that side (cutting nothing) to the vertices at y = 1, and leaves. The
 // vertices at both ends of the slide are on the crack, from parts of the path a cell apart; the
 // edges and faces between them (the diagonals of the corner column) are not: no crack face lies
 // farther from the swept surface than the meter's tolerance.
 TEST(CrackCutter, VerticesTheBladeReachedApartDoNotJoinOnTheCrack) {
+  std::vector<Eigen::Vector2d> path;
+  for (int k = 0; k <= 50; ++k) path.emplace_back(2.5 - 0.05 * k, 2);
+  for (int k = 1; k <= 20; ++k) path.emplace_back(0, 2 - 0.05 * k);
+  for (int k = 1; k <= 6; ++k) path.emplace_back(-0.05 * k, 1 - 0.02 * k);
+  std::vector<BladePose> poses;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    poses.push_back({0.01 * static_cast<double>(k),
+                     {path[k].x(), path[k].y(), 1},
+                     {path[k].x(), path[k].y(), 2.8}});
+  }
   for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
     SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
-    TetMesh m = *mesh::MakeBoxLattice({.cells_x = 2, .cells_y = 3, .cells_z = 2});
-    const TetMesh tissue = m;
-    CrackCutter cutter = *CrackCutter::Create(
-        &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 1000}, {.mode = mode});
-    lab::FidelityMeter meter(tissue);
-    std::vector<Eigen::Vector2d> path;
-    for (int k = 0; k <= 50; ++k) path.emplace_back(2.5 - 0.05 * k, 2);
-    for (int k = 1; k <= 20; ++k) path.emplace_back(0, 2 - 0.05 * k);
-    for (int k = 1; k <= 6; ++k) path.emplace_back(-0.05 * k, 1 - 0.02 * k);
-    std::optional<BladePose> last;
-    for (std::size_t k = 0; k < path.size(); ++k) {
-      const BladePose pose{0.01 * static_cast<double>(k),
-                           {path[k].x(), path[k].y(), 1},
-                           {path[k].x(), path[k].y(), 2.8}};
-      ASSERT_TRUE(cutter.ApplyPose(pose).ok());
-      if (last) meter.AddStep(*last, pose);
-      last = pose;
-    }
-    cutter.Finish();
-    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
-    EXPECT_GT(f.crack_faces, 0u);
-    EXPECT_GE(f.coverage, 0.99);
-    EXPECT_EQ(f.overcut_faces, 0u);
+    LatticeCut cut;
+    ASSERT_NO_FATAL_FAILURE(CutAlong(
+        *mesh::MakeBoxLattice({.cells_x = 2, .cells_y = 3, .cells_z = 2}), poses, mode, &cut));
+    EXPECT_GT(cut.fidelity.crack_faces, 0u);
+    EXPECT_GE(cut.fidelity.coverage, 0.99);
+    EXPECT_EQ(cut.fidelity.overcut_faces, 0u);
   }
 }
 
@@ -319,33 +333,25 @@ TEST(CrackCutter, VerticesTheBladeReachedApartDoNotJoinOnTheCrack) {
 // nothing would be cut. They stay off it, and the crack covers every sample of the swept surface.
 TEST(CrackCutter, ABladeGrazingTheSurfaceCutsTheSkinUnderIt) {
   for (const bool flat : {false, true}) {
+    std::vector<BladePose> poses;
+    for (int k = 0; k <= 16; ++k) {
+      const double x = -0.5 + 0.25 * k;
+      poses.push_back(flat ? BladePose{0.01 * k, {x, -0.5, 1.9}, {x, 3.5, 1.9}}
+                           : BladePose{0.01 * k, {x, 1.3, 1.95}, {x, 1.3, 3}});
+    }
     for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
       SCOPED_TRACE(::testing::Message()
                    << (flat ? "flat" : "tip under the top") << ", "
                    << (mode == CutMode::kProgressive ? "progressive" : "deferred"));
-      TetMesh m = *mesh::MakeBoxLattice({.cells_x = 3, .cells_y = 3, .cells_z = 2});
-      const TetMesh tissue = m;
-      CrackCutter cutter = *CrackCutter::Create(
-          &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 1000}, {.mode = mode});
-      lab::FidelityMeter meter(tissue);
-      std::optional<BladePose> last;
-      for (int k = 0; k <= 16; ++k) {
-        const double x = -0.5 + 0.25 * k;
-        const BladePose pose = flat ? BladePose{0.01 * k, {x, -0.5, 1.9}, {x, 3.5, 1.9}}
-                                    : BladePose{0.01 * k, {x, 1.3, 1.95}, {x, 1.3, 3}};
-        ASSERT_TRUE(cutter.ApplyPose(pose).ok());
-        if (last) meter.AddStep(*last, pose);
-        last = pose;
-      }
-      cutter.Finish();
-      ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-      EXPECT_GT(cutter.statistics().cut_tets, 0u);
-      const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
-      EXPECT_GT(f.samples, 0u);
+      LatticeCut cut;
+      ASSERT_NO_FATAL_FAILURE(CutAlong(
+          *mesh::MakeBoxLattice({.cells_x = 3, .cells_y = 3, .cells_z = 2}), poses, mode, &cut));
+      EXPECT_GT(cut.statistics.cut_tets, 0u);
+      EXPECT_GT(cut.fidelity.samples, 0u);
       // Flat, the box's top edges stay uncut along a rim: their vertices' normals are 45 degrees
       // from the blade's plane, so they snap, and the skin there is left on the surface.
-      EXPECT_GE(f.coverage, flat ? 0.97 : 1.0);
-      EXPECT_EQ(f.overcut_faces, 0u);
+      EXPECT_GE(cut.fidelity.coverage, flat ? 0.97 : 1.0);
+      EXPECT_EQ(cut.fidelity.overcut_faces, 0u);
     }
   }
 }
@@ -355,30 +361,22 @@ TEST(CrackCutter, ABladeGrazingTheSurfaceCutsTheSkinUnderIt) {
 // plane, within the snap reach, but 0.38 from where it came in. Snapped, they moved the crack's rim
 // to them, and 0.962 of the swept surface was covered; they stay off the crack, and all is.
 TEST(CrackCutter, ABladeComingInObliquelyCutsAlongItsWayIn) {
+  const double angle = 35 * M_PI / 180;
+  const Eigen::Vector3d down(std::cos(angle), 0, -std::sin(angle));
+  std::vector<BladePose> poses;
+  for (int k = 0; k <= 16; ++k) {
+    const Eigen::Vector3d way_in(0.616, -0.5 + 0.25 * k, 2);
+    poses.push_back({0.01 * k, way_in + 2 * down, way_in - 0.5 * down});
+  }
   for (const CutMode mode : {CutMode::kProgressive, CutMode::kDeferred}) {
     SCOPED_TRACE(mode == CutMode::kProgressive ? "progressive" : "deferred");
-    TetMesh m = *mesh::MakeBoxLattice({.cells_x = 3, .cells_y = 3, .cells_z = 2});
-    const TetMesh tissue = m;
-    CrackCutter cutter = *CrackCutter::Create(
-        &m, 1, {.max_length = 10, .max_step = 10, .max_speed = 1000}, {.mode = mode});
-    lab::FidelityMeter meter(tissue);
-    const double angle = 35 * M_PI / 180;
-    const Eigen::Vector3d down(std::cos(angle), 0, -std::sin(angle));
-    std::optional<BladePose> last;
-    for (int k = 0; k <= 16; ++k) {
-      const Eigen::Vector3d way_in(0.616, -0.5 + 0.25 * k, 2);
-      const BladePose pose{0.01 * k, way_in + 2 * down, way_in - 0.5 * down};
-      ASSERT_TRUE(cutter.ApplyPose(pose).ok());
-      if (last) meter.AddStep(*last, pose);
-      last = pose;
-    }
-    cutter.Finish();
-    ASSERT_TRUE(mesh::FindMeshDefects(m).empty()) << mesh::ValidateMesh(m);
-    const lab::Fidelity f = meter.Measure(meter.FindCrack(m));
-    EXPECT_GT(f.samples, 100u);
-    EXPECT_EQ(f.coverage, 1);
-    EXPECT_EQ(f.overcut_faces, 0u);
-    EXPECT_EQ(f.unpaired_faces, 0u);
+    LatticeCut cut;
+    ASSERT_NO_FATAL_FAILURE(CutAlong(
+        *mesh::MakeBoxLattice({.cells_x = 3, .cells_y = 3, .cells_z = 2}), poses, mode, &cut));
+    EXPECT_GT(cut.fidelity.samples, 100u);
+    EXPECT_EQ(cut.fidelity.coverage, 1);
+    EXPECT_EQ(cut.fidelity.overcut_faces, 0u);
+    EXPECT_EQ(cut.fidelity.unpaired_faces, 0u);
   }
 }
 
