@@ -277,12 +277,9 @@ bool CrackCutter::MaySnap(VertexId v, EdgeCrossingFrom from) const {
   if (distance <= kMinSnapFraction / kSnapReach * reach) return true;
   // Where the blade came in through the tissue's surface beside a vertex of it, snapping moves
   // the crack's rim there: farther than the reach, the cut along the rim would be lost (an
-  // oblique blade passes nearer the vertex than its way in does). Not to the least snapping,
-  // which snaps only vertices the blade all but passes through (and moves none for quality).
-  if (snap_fraction_ > kMinSnapFraction) {
-    const std::optional<double> entry = DistanceToTheEntry(v);
-    if (entry && *entry > reach) return false;
-  }
+  // oblique blade passes nearer the vertex than its way in does).
+  const std::optional<double> entry = DistanceToTheEntry(v);
+  if (entry && *entry > reach) return false;
   // A vertex of the tissue's surface the blade swept past stays off the crack where the crack
   // would then lie on the surface, and what the blade cut under it be lost.
   return !SnapWouldLayCrackOnSurface(v, reach);
