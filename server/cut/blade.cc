@@ -1,8 +1,11 @@
 #include "cut/blade.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "absl/strings/str_cat.h"
+#include "geometry/point_triangle_distance.h"
 
 namespace kerf::cut {
 
@@ -41,6 +44,19 @@ absl::Status ValidatePose(const BladePose& pose, const BladePose* previous,
 BladePose InterpolatePose(const BladePose& a, const BladePose& b, double time) {
   const double s = (time - a.time) / (b.time - a.time);
   return {time, a.tip + s * (b.tip - a.tip), a.heel + s * (b.heel - a.heel)};
+}
+
+std::array<std::array<Eigen::Vector3d, 3>, 2> SweptTriangles(const BladePose& from,
+                                                             const BladePose& to) {
+  return {{{from.tip, from.heel, to.heel}, {from.tip, to.heel, to.tip}}};
+}
+
+double DistanceToSweep(const Eigen::Vector3d& x, const BladePose& from, const BladePose& to) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const auto& t : SweptTriangles(from, to)) {
+    nearest = std::min(nearest, geometry::DistanceToTriangle(x, t[0], t[1], t[2]));
+  }
+  return nearest;
 }
 
 }  // namespace kerf::cut

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -32,5 +33,12 @@ absl::Status ValidatePose(const BladePose& pose, const BladePose* previous,
 // The pose at `time` on the straight motion from a to b (a.time < b.time): tip and heel
 // linear in time.
 BladePose InterpolatePose(const BladePose& a, const BladePose& b, double time);
+
+// The surface the blade's edge sweeps from `from` to `to`: triangles (tip, heel, heel') and
+// (tip, heel', tip') (shared/design/cutting.md).
+std::array<std::array<Eigen::Vector3d, 3>, 2> SweptTriangles(const BladePose& from,
+                                                             const BladePose& to);
+// The distance from `x` to that surface.
+double DistanceToSweep(const Eigen::Vector3d& x, const BladePose& from, const BladePose& to);
 
 }  // namespace kerf::cut

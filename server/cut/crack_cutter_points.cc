@@ -5,7 +5,6 @@
 #include "base/check.h"
 #include "cut/crack_cutter.h"
 #include "cut/fan_triangle.h"
-#include "geometry/point_triangle_distance.h"
 
 namespace kerf::cut {
 namespace {
@@ -250,10 +249,7 @@ Eigen::Vector3d CrackCutter::HubNearThePath(
                               w[2] * mesh_->current_position(key[2]);
     double nearest = reach;
     swept_.ForEachStepNear(*first, poses_, x, x, reach, [&](std::size_t i) {
-      const BladePose& a = swept_.at(i);
-      const BladePose& b = swept_.at(i + 1);
-      nearest = std::min({nearest, geometry::DistanceToTriangle(x, a.tip, a.heel, b.heel),
-                          geometry::DistanceToTriangle(x, a.tip, b.heel, b.tip)});
+      nearest = std::min(nearest, DistanceToSweep(x, swept_.at(i), swept_.at(i + 1)));
       return true;
     });
     return nearest;

@@ -287,9 +287,7 @@ bool CrackCutter::MaySnap(VertexId v, EdgeCrossingFrom from) const {
 
 std::optional<double> CrackCutter::DistanceToTheEntry(VertexId v) const {
   if (!step_) return std::nullopt;
-  const auto& [from, to] = *step_;
-  const std::array<std::array<Eigen::Vector3d, 3>, 2> swept = {
-      {{from.tip, from.heel, to.heel}, {from.tip, to.heel, to.tip}}};
+  const auto swept = SweptTriangles(step_->first, step_->second);
   const Eigen::Vector3d& x = mesh_->current_position(v);
   std::optional<double> nearest;
   for (const auto& triangle : surface_.TrianglesAt(v)) {
@@ -347,10 +345,7 @@ bool CrackCutter::SweptNear(const Eigen::Vector3d& x, std::size_t first, std::si
   if (first < swept_.first()) return true;  // too long ago to tell
   bool near = false;
   swept_.ForEachStepNear(first, last, x, x, reach, [&](std::size_t i) {
-    const BladePose& a = swept_.at(i);
-    const BladePose& b = swept_.at(i + 1);
-    near = geometry::DistanceToTriangle(x, a.tip, a.heel, b.heel) <= reach ||
-           geometry::DistanceToTriangle(x, a.tip, b.heel, b.tip) <= reach;
+    near = DistanceToSweep(x, swept_.at(i), swept_.at(i + 1)) <= reach;
     return !near;
   });
   return near;

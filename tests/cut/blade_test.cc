@@ -49,5 +49,16 @@ TEST(ValidatePose, RefusesNonFiniteShortLongJumpingAndFastPoses) {
   EXPECT_TRUE(ValidatePose(p, &first, limits).ok());
 }
 
+// A blade standing along z, moved 1 along x: it sweeps the unit square of the plane y = 0.
+TEST(Blade, TheSweepIsTheSquareBetweenTwoPoses) {
+  const BladePose from{0, {0, 0, 0}, {0, 0, 1}}, to{0.1, {1, 0, 0}, {1, 0, 1}};
+  const auto triangles = SweptTriangles(from, to);
+  EXPECT_EQ(triangles[0][0], from.tip);
+  EXPECT_EQ(triangles[1][2], to.tip);
+  EXPECT_DOUBLE_EQ(DistanceToSweep({0.5, 0.3, 0.5}, from, to), 0.3);  // over its middle
+  EXPECT_DOUBLE_EQ(DistanceToSweep({0.1, 0, 0.9}, from, to), 0);      // in it, by the heel
+  EXPECT_DOUBLE_EQ(DistanceToSweep({2, 0, 0.5}, from, to), 1);        // beyond its far side
+}
+
 }  // namespace
 }  // namespace kerf::cut
