@@ -118,15 +118,25 @@ class ApexSearch {
     for (int k = 0; k < 4; ++k) corner_[k] = rest(crack.corners[k]);
     reach_ = kApexReach * geometry::MeanEdgeLength(corner_[0], corner_[1], corner_[2], corner_[3]);
     line_ = ApexLineOf(crack, rest, At(Eigen::Vector4d::Constant(0.25)));
+    if (HasInnerCrack(crack)) traces_ = Traces(crack);
   }
 
   // Candidates are pulled inside by kApexMargin: towards `to` where that keeps the margin (on the
   // crack's plane), else towards the tet's middle. Of the candidates, the one
-  // whose cone's smallest dihedral angle is largest (the first of equals) among those near the
-  // path (Near); and the best among those no farther off the plane than the first.
+  // whose cone's smallest dihedral angle is largest (the first of equals) among those nearest the
+  // path (Nearness); and the best among those no farther off the plane than the first.
   struct Best {
     std::optional<Eigen::Vector4d> near;
     Eigen::Vector4d off_plane_no_farther;
+  };
+  // The best near candidate so far: its nearness first, then its angle.
+  struct BestNear {
+    int nearness = 0;
+    double angle = -1;
+    Eigen::Vector4d w;
+    void Consider(int n, double a, const Eigen::Vector4d& x) {
+      if (n > nearness || (n == nearness && n > 0 && a > angle)) nearness = n, angle = a, w = x;
+    }
   };
   Best Run() const {
     const Eigen::Vector4d target = WeightsOf(line_.to);
@@ -135,18 +145,16 @@ class ApexSearch {
     const auto pulled = [&](const Eigen::Vector3d& x) {
       return PulledInside(WeightsOf(x), towards);
     };
-    Eigen::Vector4d best = pulled(line_.from), best_near = best;
+    Eigen::Vector4d best = pulled(line_.from);
+    BestNear best_near;
     const double allowed_off = OffPlane(At(best)) * (1 + 1e-9) + 1e-12;
-    double best_angle = -1, best_near_angle = -1;
+    double best_angle = -1;
     const auto consider = [&](const Eigen::Vector3d& x) {
       const Eigen::Vector4d w = pulled(x);
       const double off = OffPlane(At(w));
       if (off > std::max(allowed_off, reach_)) return;
       const double angle = SmallestConeAngle(crack_, rest_, At(w));
-      if (angle > best_near_angle && Near(w)) {
-        best_near_angle = angle;
-        best_near = w;
-      }
+      best_near.Consider(Nearness(w), angle, w);
       if (off <= allowed_off && angle > best_angle) {
         best_angle = angle;
         best = w;
@@ -160,21 +168,20 @@ class ApexSearch {
     double step = 0;
     for (int k = 1; k < 4; ++k) step += (corner_[k] - corner_[0]).norm() / 12;
     for (int round = 0; round < 3 && !directions.empty(); ++round, step /= 2) {
-      const Eigen::Vector3d around = At(best_near_angle >= 0 ? best_near : best);
+      const Eigen::Vector3d around = At(best_near.nearness > 0 ? best_near.w : best);
       for (const Eigen::Vector3d& d : directions) consider(around + step * d);
     }
     // Where none is near, where the blade went inside the tet, pulled inside by less, towards the
     // tet's middle (the plane's is no nearer the path).
-    if (best_near_angle < 0 && on_path_ && near_path_) {
+    if (best_near.nearness == 0 && on_path_ && near_path_) {
       for (const Eigen::Vector4d& went : SpreadEvenly(on_path_(), kOnPathCandidates)) {
         const Eigen::Vector4d w =
             PulledInside(went, Eigen::Vector4d::Constant(0.25), kOnPathApexMargin);
-        if (!Near(w)) continue;
-        const double angle = SmallestConeAngle(crack_, rest_, At(w));
-        if (angle > best_near_angle) best_near_angle = angle, best_near = w;
+        const int nearness = Nearness(w);
+        if (nearness > 0) best_near.Consider(nearness, SmallestConeAngle(crack_, rest_, At(w)), w);
       }
     }
-    return {best_near_angle >= 0 ? std::optional(best_near) : std::nullopt, best};
+    return {best_near.nearness > 0 ? std::optional(best_near.w) : std::nullopt, best};
   }
 
  private:
@@ -189,9 +196,17 @@ class ApexSearch {
   double OffPlane(const Eigen::Vector3d& apex) const {
     return line_.normal ? std::abs(line_.normal->dot(apex - line_.from)) : 0.0;
   }
-  // Near the blade's path where it is known, else within the reach of the crack's plane.
-  bool Near(const Eigen::Vector4d& w) const {
-    return near_path_ ? near_path_(w) : OffPlane(At(w)) <= reach_;
+  // 0 if the apex is not near the blade's path where that is known (else within the reach of the
+  // crack's plane), 1 if it is, 2 if the middles of the cone's crack faces are near the path too
+  // (where the swept surface bends, a face from an apex near it may still leave it).
+  int Nearness(const Eigen::Vector4d& w) const {
+    if (!near_path_) return OffPlane(At(w)) <= reach_ ? 1 : 0;
+    if (!near_path_(w)) return 0;
+    const Eigen::Vector3d apex = At(w);
+    const bool faces_near = std::all_of(traces_.begin(), traces_.end(), [&](const auto& s) {
+      return near_path_(WeightsOf((apex + rest_(s[0]) + rest_(s[1])) / 3));
+    });
+    return faces_near ? 2 : 1;
   }
   std::vector<Eigen::Vector3d> SearchDirections() const {
     if (line_.normal) {
@@ -210,6 +225,7 @@ class ApexSearch {
   std::array<Eigen::Vector3d, 4> corner_;
   double reach_ = 0;
   ApexLine line_;
+  std::vector<std::array<mesh::VertexId, 2>> traces_;  // of the cone's crack faces
 };
 
 }  // namespace

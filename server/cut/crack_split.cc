@@ -31,16 +31,6 @@ const std::vector<VertexId>& FaceVertices(const TetCrack& crack, int k) {
   return crack.face_vertices[k];
 }
 
-std::vector<std::array<VertexId, 2>> Traces(const TetCrack& crack) {
-  std::vector<std::array<VertexId, 2>> traces;
-  for (const FaceSplit& f : crack.faces) {
-    for (const auto& s : f.trace) {
-      if (std::find(traces.begin(), traces.end(), s) == traces.end()) traces.push_back(s);
-    }
-  }
-  return traces;
-}
-
 // The point on the tet's edge between corners i and j, if it has one.
 std::optional<VertexId> EdgePoint(const TetCrack& crack, int i, int j) {
   for (int k = 0; k < 4; ++k) {
@@ -173,6 +163,16 @@ std::optional<CrackSplit> SplitAsFan(const TetCrack& crack, bool inner) {
 }
 
 }  // namespace
+
+std::vector<std::array<VertexId, 2>> Traces(const TetCrack& crack) {
+  std::vector<std::array<VertexId, 2>> traces;
+  for (const FaceSplit& f : crack.faces) {
+    for (const auto& s : f.trace) {
+      if (std::find(traces.begin(), traces.end(), s) == traces.end()) traces.push_back(s);
+    }
+  }
+  return traces;
+}
 
 TetCrack MakeTetCrack(const TetVertices& corners, std::array<FacePoints, 4> points) {
   TetCrack crack{corners, {}, {}, {}};

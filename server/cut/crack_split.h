@@ -36,6 +36,8 @@ struct TetCrack {
 // The crack of a tet from its faces' points (their corners set from `corners`).
 TetCrack MakeTetCrack(const mesh::TetVertices& corners, std::array<FacePoints, 4> points);
 
+// The faces' trace segments, each once.
+std::vector<std::array<mesh::VertexId, 2>> Traces(const TetCrack& crack);
 // The distinct ends of the faces' trace segments, and whether they do not all lie on one face.
 std::vector<mesh::VertexId> TracePoints(const TetCrack& crack);
 bool HasInnerCrack(const TetCrack& crack);

@@ -165,6 +165,37 @@ TEST(ConeApex, AnApexAwayFromTheBladesPathIsNotTaken) {
   EXPECT_GE(refused.minCoeff(), kApexMargin - 1e-12);
 }
 
+// Where the swept surface bends, an apex near it may still have a crack face that leaves it: of
+// the candidates near the path, one whose cone's crack faces have their middles near it too is
+// taken before a rounder one. Here the path is everywhere but a small ball around the middle of a
+// crack face of the cone the search takes without a path.
+TEST(ConeApex, TheConesFacesStayNearWhereThePathBends) {
+  OneTet tet = CornerThreeCutOff();
+  const TetCrack crack = tet.Crack();
+  const auto rest = tet.RestOf();
+  const auto at = [&](const Eigen::Vector4d& w) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) x += w[k] * tet.Rest(tet.corners()[k]);
+    return x;
+  };
+  const auto middle_of = [&](const Eigen::Vector4d& apex, const std::array<VertexId, 2>& s) {
+    return Eigen::Vector3d((at(apex) + tet.Rest(s[0]) + tet.Rest(s[1])) / 3);
+  };
+  const std::vector<std::array<VertexId, 2>> traces = Traces(crack);
+  ASSERT_EQ(traces.size(), 3u);
+  const Eigen::Vector4d free = ConeApexWeights(crack, rest);
+  const Eigen::Vector3d hole = middle_of(free, traces[0]);
+  const double radius = 0.005;
+  const ApexNearPath outside_the_hole = [&](const Eigen::Vector4d& w) {
+    return (at(w) - hole).norm() > radius;
+  };
+  ASSERT_TRUE(outside_the_hole(free));
+  const Eigen::Vector4d chosen = ConeApexWeights(crack, rest, outside_the_hole);
+  EXPECT_GT((chosen - free).norm(), 1e-6);
+  for (const auto& s : traces) EXPECT_GT((middle_of(chosen, s) - hole).norm(), radius);
+  EXPECT_GE(chosen.minCoeff(), kApexMargin - 1e-12);
+}
+
 // Where the blade's path comes near no candidate on the traces' plane (it went by the tet's corner
 // 0, the crack's plane cutting off corner 3), the points where it went are tried, pulled inside by
 // kOnPathApexMargin: the apex is near the path, and the points are asked for only then.
